@@ -1,0 +1,54 @@
+//! Fixed dummy wall particles with extrapolated pressure (Adami, Hu & Adams 2012,
+//! J. Comput. Phys. 231:7057):
+//!
+//! `p_w = [Σ_f p_f W_wf + (g - a_w)·Σ_f ρ_f (x_w - x_f) W_wf] / Σ_f W_wf`,
+//! `ρ_w = ρ0 + p_w/c0²`, and for the viscous term the wall velocity seen by the
+//! fluid is `2 u_w - ũ_w` with `ũ_w = Σ_f u_f W_wf / Σ_f W_wf` (no-slip). Free-slip
+//! walls drop the wall-fluid viscous interaction instead. Walls are fixed here
+//! (`u_w = a_w = 0`); a wall particle with no fluid neighbour takes p = 0, ρ = ρ0.
+
+use crate::domain::Domain;
+use crate::eos::LinearEos;
+use crate::kernel::Kernel;
+use crate::neighbours::NeighbourList;
+use crate::particles::{Kind, Particles, Vector};
+use rayon::prelude::*;
+
+/// Updates pressure, density and viscous velocity of every wall particle from the fluid.
+pub fn extrapolate_walls<const D: usize, K: Kernel>(
+    kernel: &K,
+    eos: &LinearEos,
+    gravity: &Vector<D>,
+    particles: &mut Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+) {
+    let state: &Particles<D> = particles;
+    let updates: Vec<(usize, f64, Vector<D>)> = (0..state.len())
+        .into_par_iter()
+        .filter(|&i| state.kind[i] == Kind::Wall)
+        .map(|i| {
+            let xw = state.x[i];
+            let (mut sw, mut sp, mut srx, mut su) = (0.0, 0.0, Vector::<D>::zeros(), Vector::<D>::zeros());
+            for &f in list.of(i) {
+                let f = f as usize;
+                let x_wf = domain.separation(&xw, &state.x[f]);
+                let w = kernel.w(x_wf.norm());
+                sw += w;
+                sp += state.p[f] * w;
+                srx += x_wf * (state.rho[f] * w);
+                su += state.u[f] * w;
+            }
+            if sw > 0.0 {
+                (i, (sp + gravity.dot(&srx)) / sw, -su / sw)
+            } else {
+                (i, 0.0, Vector::zeros())
+            }
+        })
+        .collect();
+    for (i, p, u_visc) in updates {
+        particles.p[i] = p;
+        particles.rho[i] = eos.density(p);
+        particles.u_wall_visc[i] = u_visc;
+    }
+}

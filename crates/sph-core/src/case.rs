@@ -1,0 +1,663 @@
+//! The case file: a TOML schema read with serde (unknown keys rejected) and checked
+//! value by value, so that every mistake is reported as one line naming the key,
+//! the value and what was expected. All quantities are SI.
+
+use crate::error::{Result, SphError};
+use crate::kernel::KernelChoice;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A whole case, as written in the TOML file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Free-form name, used for the default output folder.
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// 2 or 3.
+    pub dimension: usize,
+    pub particles: ParticlesConfig,
+    pub fluid: FluidConfig,
+    #[serde(default)]
+    pub fluid_block: Vec<BoxConfig>,
+    #[serde(default)]
+    pub tank: Vec<TankConfig>,
+    #[serde(default)]
+    pub wall: Vec<BoxConfig>,
+    #[serde(default)]
+    pub domain: Option<DomainConfig>,
+    #[serde(default)]
+    pub initial: Option<InitialField>,
+    #[serde(default)]
+    pub scheme: SchemeConfig,
+    pub time: TimeConfig,
+    #[serde(default)]
+    pub stability: StabilityConfig,
+    #[serde(default)]
+    pub diagnostics: DiagnosticsConfig,
+}
+
+fn default_name() -> String {
+    "case".into()
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParticlesConfig {
+    /// Initial particle spacing Δx [m].
+    pub spacing: f64,
+    /// Smoothing length over spacing, h/Δx.
+    #[serde(default = "default_h_over_dx")]
+    pub h_over_dx: f64,
+    #[serde(default = "default_kernel")]
+    pub kernel: KernelChoice,
+}
+
+fn default_h_over_dx() -> f64 {
+    1.33
+}
+fn default_kernel() -> KernelChoice {
+    KernelChoice::WendlandC2
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FluidConfig {
+    /// Reference density ρ0 [kg/m³].
+    pub density: f64,
+    /// Gravity vector [m/s²]; zero if absent.
+    #[serde(default)]
+    pub gravity: Option<Vec<f64>>,
+    /// Numerical sound speed c0 [m/s]; from the rule `factor · max(U, sqrt(Δp/ρ0))` if absent.
+    #[serde(default)]
+    pub sound_speed: Option<f64>,
+    #[serde(default = "default_sound_speed_factor")]
+    pub sound_speed_factor: f64,
+    /// U_max for the sound-speed rule; default `max(|u0|, sqrt(2 |g| H))`, H the fluid height.
+    #[serde(default)]
+    pub max_velocity: Option<f64>,
+}
+
+fn default_sound_speed_factor() -> f64 {
+    10.0
+}
+
+/// An axis-aligned box `[lo, hi]`, filled with particles on the lattice `lo + (k + ½)Δx`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    /// Initial velocity (fluid blocks only).
+    #[serde(default)]
+    pub velocity: Option<Vec<f64>>,
+    /// Start from the hydrostatic density of a column whose free surface is the box top
+    /// (fluid blocks only; default true).
+    #[serde(default)]
+    pub hydrostatic: Option<bool>,
+}
+
+/// A tank: wall layers around the inner box `[lo, hi]`, except on the open faces.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TankConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    /// Number of wall particle layers.
+    #[serde(default = "default_layers")]
+    pub layers: usize,
+    /// Faces left open, among "-x", "+x", "-y", "+y", "-z", "+z"; default the top face.
+    #[serde(default)]
+    pub open: Option<Vec<String>>,
+}
+
+fn default_layers() -> usize {
+    3
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DomainConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    pub periodic: Vec<bool>,
+}
+
+/// An analytic initial field laid over the fluid blocks.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum InitialField {
+    /// 2D Taylor-Green vortex on a periodic square of side `wavelength`:
+    /// `u = U(-cos kx sin ky, sin kx cos ky)`, `p = -ρ0 U²/4 (cos 2kx + cos 2ky)`, `k = 2π/L`.
+    TaylorGreen { amplitude: f64, wavelength: f64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DiffusionChoice {
+    None,
+    MolteniColagrossi,
+    Ferrari,
+    DeltaSph,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ViscosityChoice {
+    None,
+    Artificial,
+    Physical,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IntegratorChoice {
+    /// Runge-Kutta 4 with the diffusive term frozen over the step.
+    Rk4,
+    /// Second-order symplectic predictor-corrector.
+    Symplectic,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WallCondition {
+    FreeSlip,
+    NoSlip,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SchemeConfig {
+    #[serde(default = "default_diffusion")]
+    pub diffusion: DiffusionChoice,
+    /// δ of the diffusive term.
+    #[serde(default = "default_delta")]
+    pub delta: f64,
+    #[serde(default = "default_viscosity")]
+    pub viscosity: ViscosityChoice,
+    /// α of the artificial viscosity.
+    #[serde(default)]
+    pub alpha: Option<f64>,
+    /// Dynamic viscosity μ [Pa s] of the physical viscosity.
+    #[serde(default)]
+    pub dynamic_viscosity: Option<f64>,
+    #[serde(default = "default_integrator")]
+    pub integrator: IntegratorChoice,
+    /// Courant number of `Δt = CFL h/c0`; default 1.5 (RK4) or 0.4 (symplectic).
+    #[serde(default)]
+    pub cfl: Option<f64>,
+    /// Viscous limit `Δt <= C_ν h²/ν`.
+    #[serde(default = "default_viscous_cfl")]
+    pub viscous_cfl: f64,
+    /// Body-force limit `Δt <= C_f sqrt(h/|a|max)`.
+    #[serde(default = "default_force_cfl")]
+    pub force_cfl: f64,
+    #[serde(default = "default_walls")]
+    pub walls: WallCondition,
+}
+
+impl Default for SchemeConfig {
+    fn default() -> Self {
+        Self {
+            diffusion: default_diffusion(),
+            delta: default_delta(),
+            viscosity: default_viscosity(),
+            alpha: None,
+            dynamic_viscosity: None,
+            integrator: default_integrator(),
+            cfl: None,
+            viscous_cfl: default_viscous_cfl(),
+            force_cfl: default_force_cfl(),
+            walls: default_walls(),
+        }
+    }
+}
+
+fn default_diffusion() -> DiffusionChoice {
+    DiffusionChoice::DeltaSph
+}
+fn default_delta() -> f64 {
+    0.1
+}
+fn default_viscosity() -> ViscosityChoice {
+    ViscosityChoice::Artificial
+}
+fn default_integrator() -> IntegratorChoice {
+    IntegratorChoice::Rk4
+}
+fn default_viscous_cfl() -> f64 {
+    0.125
+}
+fn default_force_cfl() -> f64 {
+    0.25
+}
+fn default_walls() -> WallCondition {
+    WallCondition::FreeSlip
+}
+
+impl SchemeConfig {
+    /// The Courant number in force.
+    pub fn cfl(&self) -> f64 {
+        self.cfl.unwrap_or(match self.integrator {
+            IntegratorChoice::Rk4 => 1.5,
+            IntegratorChoice::Symplectic => 0.4,
+        })
+    }
+    /// α of the artificial viscosity (default 0.02).
+    pub fn alpha(&self) -> f64 {
+        self.alpha.unwrap_or(0.02)
+    }
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeConfig {
+    /// End time [s].
+    pub end: f64,
+    /// Interval between particle snapshots [s]; 0 writes only the first and last.
+    #[serde(default)]
+    pub output_interval: f64,
+    /// Optional cap on the number of steps.
+    #[serde(default)]
+    pub max_steps: Option<u64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilityConfig {
+    /// Largest admissible |ρ/ρ0 - 1| before the run is stopped.
+    #[serde(default = "default_max_density_variation")]
+    pub max_density_variation: f64,
+}
+
+impl Default for StabilityConfig {
+    fn default() -> Self {
+        Self { max_density_variation: default_max_density_variation() }
+    }
+}
+
+fn default_max_density_variation() -> f64 {
+    0.2
+}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiagnosticsConfig {
+    /// Interval of the time series (energies, probes, front) [s]; default output_interval/10.
+    #[serde(default)]
+    pub interval: Option<f64>,
+    /// Write E_k, E_p, E_c, their sum and max |Δρ/ρ0|.
+    #[serde(default)]
+    pub energy: bool,
+    /// Also integrate the viscous and diffusive powers every step (one extra pair loop per step).
+    #[serde(default)]
+    pub energy_budget: bool,
+    /// Pressure probes (Shepard interpolation from fluid particles).
+    #[serde(default)]
+    pub probes: Vec<Vec<f64>>,
+    /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
+    #[serde(default)]
+    pub surge_front_axis: Option<usize>,
+}
+
+impl Case {
+    /// Reads and validates a case file.
+    pub fn from_file(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| SphError::CaseFile {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml_str(&text).map_err(|e| match e {
+            SphError::CaseFile { message, .. } => {
+                SphError::CaseFile { path: path.display().to_string(), message }
+            }
+            other => other,
+        })
+    }
+
+    /// Parses and validates a case from TOML text.
+    pub fn from_toml_str(text: &str) -> Result<Self> {
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            let first = e.message().lines().next().unwrap_or("").to_string();
+            let at = e.span().map(|s| line_col(text, s.start)).unwrap_or_default();
+            SphError::CaseFile { path: "<case>".into(), message: format!("TOML syntax{at}: {first}") }
+        })?;
+        Self::from_table(table)
+    }
+
+    /// Deserialises a parsed TOML table (the Python front goes through here too).
+    pub fn from_table(table: toml::Table) -> Result<Self> {
+        let value = toml::Value::Table(table);
+        let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
+            let key = e.path().to_string();
+            let found = lookup(&value, &key).map(|v| v.to_string()).unwrap_or_else(|| "(missing)".into());
+            SphError::invalid(key, found, e.inner().to_string())
+        })?;
+        case.validate()?;
+        Ok(case)
+    }
+
+    /// Value checks beyond types; geometry checks that need particles happen when building.
+    pub fn validate(&self) -> Result<()> {
+        let d = self.dimension;
+        if d != 2 && d != 3 {
+            return Err(SphError::invalid("dimension", d, "2 or 3"));
+        }
+        positive("particles.spacing", self.particles.spacing)?;
+        let ratio = self.particles.h_over_dx;
+        if !(1.0..=3.0).contains(&ratio) {
+            return Err(SphError::invalid("particles.h_over_dx", ratio, "a value in [1, 3]"));
+        }
+        positive("fluid.density", self.fluid.density)?;
+        if let Some(g) = &self.fluid.gravity {
+            components("fluid.gravity", g, d)?;
+        }
+        if let Some(c0) = self.fluid.sound_speed {
+            positive("fluid.sound_speed", c0)?;
+        }
+        positive("fluid.sound_speed_factor", self.fluid.sound_speed_factor)?;
+        if let Some(u) = self.fluid.max_velocity {
+            non_negative("fluid.max_velocity", u)?;
+        }
+        if self.fluid_block.is_empty() {
+            return Err(SphError::invalid("fluid_block", "[]", "at least one [[fluid_block]]"));
+        }
+        for (k, b) in self.fluid_block.iter().enumerate() {
+            check_box(&format!("fluid_block[{k}]"), &b.lo, &b.hi, d)?;
+            if let Some(v) = &b.velocity {
+                components(&format!("fluid_block[{k}].velocity"), v, d)?;
+            }
+        }
+        for (k, b) in self.wall.iter().enumerate() {
+            check_box(&format!("wall[{k}]"), &b.lo, &b.hi, d)?;
+            if b.velocity.is_some() || b.hydrostatic.is_some() {
+                return Err(SphError::invalid(
+                    format!("wall[{k}]"),
+                    "velocity/hydrostatic",
+                    "only lo and hi (walls are fixed)",
+                ));
+            }
+        }
+        for (k, t) in self.tank.iter().enumerate() {
+            check_box(&format!("tank[{k}]"), &t.lo, &t.hi, d)?;
+            if t.layers == 0 {
+                return Err(SphError::invalid(format!("tank[{k}].layers"), 0, "at least 1"));
+            }
+            for face in t.open.iter().flatten() {
+                if face_axis(face, d).is_none() {
+                    let faces = &["-x", "+x", "-y", "+y", "-z", "+z"][..2 * d];
+                    return Err(SphError::invalid(
+                        format!("tank[{k}].open"),
+                        format!("{face:?}"),
+                        format!("faces among {faces:?}"),
+                    ));
+                }
+            }
+        }
+        if let Some(dom) = &self.domain {
+            check_box("domain", &dom.lo, &dom.hi, d)?;
+            if dom.periodic.len() != d {
+                return Err(SphError::invalid(
+                    "domain.periodic",
+                    format!("{:?}", dom.periodic),
+                    format!("{d} booleans (dimension = {d})"),
+                ));
+            }
+        }
+        if let Some(InitialField::TaylorGreen { amplitude, wavelength }) = &self.initial {
+            if d != 2 {
+                return Err(SphError::invalid("initial.type", "\"taylor_green\"", "dimension = 2"));
+            }
+            finite("initial.amplitude", *amplitude)?;
+            positive("initial.wavelength", *wavelength)?;
+        }
+        self.validate_scheme()?;
+        positive("time.end", self.time.end)?;
+        non_negative("time.output_interval", self.time.output_interval)?;
+        positive("stability.max_density_variation", self.stability.max_density_variation)?;
+        if let Some(i) = self.diagnostics.interval {
+            positive("diagnostics.interval", i)?;
+        }
+        for (k, p) in self.diagnostics.probes.iter().enumerate() {
+            components(&format!("diagnostics.probes[{k}]"), p, d)?;
+        }
+        if let Some(a) = self.diagnostics.surge_front_axis {
+            if a >= d {
+                return Err(SphError::invalid(
+                    "diagnostics.surge_front_axis",
+                    a,
+                    format!("an axis index below {d}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_scheme(&self) -> Result<()> {
+        let s = &self.scheme;
+        if !(0.0..=1.0).contains(&s.delta) {
+            return Err(SphError::invalid("scheme.delta", s.delta, "a value in [0, 1]"));
+        }
+        match s.viscosity {
+            ViscosityChoice::Artificial => non_negative("scheme.alpha", s.alpha())?,
+            ViscosityChoice::Physical => match s.dynamic_viscosity {
+                Some(mu) => positive("scheme.dynamic_viscosity", mu)?,
+                None => {
+                    return Err(SphError::invalid(
+                        "scheme.dynamic_viscosity",
+                        "(missing)",
+                        "a positive viscosity μ in Pa·s when scheme.viscosity = \"physical\"",
+                    ))
+                }
+            },
+            ViscosityChoice::None => {}
+        }
+        let cfl = s.cfl();
+        if !(cfl > 0.0 && cfl <= 3.0) {
+            return Err(SphError::invalid("scheme.cfl", cfl, "a Courant number in (0, 3]"));
+        }
+        positive("scheme.viscous_cfl", s.viscous_cfl)?;
+        positive("scheme.force_cfl", s.force_cfl)
+    }
+
+    /// Initial particle spacing Δx.
+    pub fn dx(&self) -> f64 {
+        self.particles.spacing
+    }
+
+    /// Smoothing length h.
+    pub fn h(&self) -> f64 {
+        self.particles.h_over_dx * self.particles.spacing
+    }
+
+    /// Gravity vector as a slice of `dimension` components.
+    pub fn gravity(&self) -> Vec<f64> {
+        self.fluid.gravity.clone().unwrap_or_else(|| vec![0.0; self.dimension])
+    }
+}
+
+/// The axis and side (`+1`/`-1`) a face name like "+y" stands for.
+pub fn face_axis(face: &str, dim: usize) -> Option<(usize, i8)> {
+    let mut ch = face.chars();
+    let sign = match ch.next()? {
+        '+' => 1,
+        '-' => -1,
+        _ => return None,
+    };
+    let axis = match ch.next()? {
+        'x' => 0,
+        'y' => 1,
+        'z' => 2,
+        _ => return None,
+    };
+    (ch.next().is_none() && axis < dim).then_some((axis, sign))
+}
+
+fn positive(key: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SphError::invalid(key, v, "a positive number"))
+    }
+}
+
+fn non_negative(key: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(SphError::invalid(key, v, "a number >= 0"))
+    }
+}
+
+fn finite(key: &str, v: f64) -> Result<()> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(SphError::invalid(key, v, "a finite number"))
+    }
+}
+
+fn components(key: &str, v: &[f64], d: usize) -> Result<()> {
+    if v.len() != d {
+        return Err(SphError::invalid(key, format!("{v:?}"), format!("{d} components (dimension = {d})")));
+    }
+    if v.iter().any(|c| !c.is_finite()) {
+        return Err(SphError::invalid(key, format!("{v:?}"), "finite components"));
+    }
+    Ok(())
+}
+
+fn check_box(key: &str, lo: &[f64], hi: &[f64], d: usize) -> Result<()> {
+    components(&format!("{key}.lo"), lo, d)?;
+    components(&format!("{key}.hi"), hi, d)?;
+    if lo.iter().zip(hi).any(|(a, b)| b <= a) {
+        return Err(SphError::invalid(
+            format!("{key}.hi"),
+            format!("{hi:?}"),
+            format!("every component above lo = {lo:?}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Looks a dotted path like `scheme.delta` or `fluid_block[0].lo` up in the parsed table.
+fn lookup<'a>(v: &'a toml::Value, path: &str) -> Option<&'a toml::Value> {
+    let mut cur = v;
+    for part in path.split('.') {
+        let (name, index) = match part.find('[') {
+            Some(b) => (&part[..b], part[b + 1..part.len() - 1].parse::<usize>().ok()),
+            None => (part, None),
+        };
+        if !name.is_empty() {
+            cur = cur.get(name)?;
+        }
+        if let Some(k) = index {
+            cur = cur.get(k)?;
+        }
+    }
+    Some(cur)
+}
+
+fn line_col(text: &str, offset: usize) -> String {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.len() - before.rfind('\n').map(|p| p + 1).unwrap_or(0) + 1;
+    format!(" at line {line}, column {col}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = r#"
+        dimension = 2
+        [particles]
+        spacing = 0.01
+        [fluid]
+        density = 1000.0
+        gravity = [0.0, -9.81]
+        [[fluid_block]]
+        lo = [0.0, 0.0]
+        hi = [0.2, 0.1]
+        [[tank]]
+        lo = [0.0, 0.0]
+        hi = [0.5, 0.3]
+        [time]
+        end = 0.1
+    "#;
+
+    fn error_of(text: &str) -> String {
+        Case::from_toml_str(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn minimal_case_parses_with_defaults() {
+        let c = Case::from_toml_str(MINIMAL).unwrap();
+        assert_eq!(c.scheme.diffusion, DiffusionChoice::DeltaSph);
+        assert_eq!(c.scheme.cfl(), 1.5);
+        assert!((c.h() - 0.0133).abs() < 1e-12);
+    }
+
+    #[test]
+    fn unknown_key_is_named() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nspacingg = 2"));
+        assert!(e.starts_with("particles.spacingg") || e.contains("spacingg"), "{e}");
+        assert!(e.contains("unknown field"), "{e}");
+        assert_eq!(e.lines().count(), 1, "{e}");
+    }
+
+    #[test]
+    fn wrong_type_names_key_and_value() {
+        let e = error_of(&MINIMAL.replace("end = 0.1", "end = \"soon\""));
+        assert!(e.starts_with("time.end = \"soon\""), "{e}");
+    }
+
+    #[test]
+    fn negative_spacing_is_refused() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = -0.01"));
+        assert_eq!(e, "particles.spacing = -0.01: expected a positive number");
+    }
+
+    #[test]
+    fn h_over_dx_out_of_range() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nh_over_dx = 7"));
+        assert!(e.starts_with("particles.h_over_dx = 7"), "{e}");
+    }
+
+    #[test]
+    fn wrong_component_count() {
+        let e = error_of(&MINIMAL.replace("gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]"));
+        assert!(e.starts_with("fluid.gravity = [0.0, 0.0, -9.81]: expected 2 components"), "{e}");
+    }
+
+    #[test]
+    fn inverted_box() {
+        let e = error_of(&MINIMAL.replace("hi = [0.2, 0.1]", "hi = [0.2, -0.1]"));
+        assert!(e.starts_with("fluid_block[0].hi"), "{e}");
+    }
+
+    #[test]
+    fn unknown_kernel_lists_choices() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nkernel = \"sinc\""));
+        assert!(e.starts_with("particles.kernel = \"sinc\""), "{e}");
+        assert!(e.contains("wendland_c2"), "{e}");
+    }
+
+    #[test]
+    fn syntax_error_has_a_position() {
+        let e = error_of("dimension = = 2");
+        assert!(e.contains("line 1"), "{e}");
+    }
+
+    #[test]
+    fn physical_viscosity_needs_mu() {
+        let e = error_of(&format!("{MINIMAL}\n[scheme]\nviscosity = \"physical\""));
+        assert!(e.starts_with("scheme.dynamic_viscosity = (missing)"), "{e}");
+    }
+
+    #[test]
+    fn bad_open_face() {
+        let e = error_of(&MINIMAL.replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3]\nopen = [\"+z\"]"));
+        assert!(e.starts_with("tank[0].open = \"+z\""), "{e}");
+    }
+}

@@ -1,0 +1,228 @@
+//! Builds the initial particle set of a case: fluid blocks on a lattice, tank and
+//! wall boxes as layers of fixed dummy particles, the initial density (hydrostatic
+//! or from an analytic field), masses `m_i = ρ_i V0`, and the sound speed.
+
+use crate::case::{face_axis, Case, InitialField};
+use crate::domain::Domain;
+use crate::eos::LinearEos;
+use crate::error::{Result, SphError};
+use crate::particles::{Kind, Particles, Vector};
+use std::collections::HashMap;
+use std::f64::consts::PI;
+
+/// Everything the case fixes before the first step.
+pub struct Setup<const D: usize> {
+    pub particles: Particles<D>,
+    pub domain: Domain<D>,
+    pub eos: LinearEos,
+    pub gravity: Vector<D>,
+}
+
+fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
+    Vector::from_fn(|d, _| v[d])
+}
+
+/// Lattice points `lo + (k + ½)Δx` filling `[lo, hi]`, with the count per axis rounded.
+fn lattice<const D: usize>(lo: &Vector<D>, hi: &Vector<D>, dx: f64) -> Vec<Vector<D>> {
+    let n: Vec<usize> = (0..D).map(|d| ((hi[d] - lo[d]) / dx).round().max(0.0) as usize).collect();
+    let total: usize = n.iter().product();
+    (0..total)
+        .map(|mut k| {
+            let mut x = *lo;
+            for d in 0..D {
+                x[d] += ((k % n[d]) as f64 + 0.5) * dx;
+                k /= n[d];
+            }
+            x
+        })
+        .collect()
+}
+
+/// Builds particles, domain, EOS and gravity for a validated case of dimension `D`.
+pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
+    assert_eq!(case.dimension, D, "case dimension and solver dimension differ");
+    let dx = case.dx();
+    let gravity: Vector<D> = vector(&case.gravity());
+    let rho0 = case.fluid.density;
+    let volume = dx.powi(D as i32);
+
+    let mut fluid: Vec<(Vector<D>, Vector<D>, usize)> = Vec::new();
+    for (k, b) in case.fluid_block.iter().enumerate() {
+        let points = lattice(&vector(&b.lo), &vector(&b.hi), dx);
+        if points.is_empty() {
+            return Err(SphError::invalid(
+                format!("fluid_block[{k}]"),
+                format!("lo = {:?}, hi = {:?}", b.lo, b.hi),
+                format!("a box at least one spacing ({dx} m) wide along every axis"),
+            ));
+        }
+        let u: Vector<D> = b.velocity.as_deref().map(vector).unwrap_or_else(Vector::zeros);
+        fluid.extend(points.into_iter().map(|x| (x, u, k)));
+    }
+
+    let eos = LinearEos { rho0, c0: sound_speed(case, &fluid, &gravity, dx)? };
+    let mut particles = Particles::default();
+    for &(x, mut u, k) in &fluid {
+        let b = &case.fluid_block[k];
+        let mut p = 0.0;
+        if b.hydrostatic.unwrap_or(true) {
+            // p = ρ0 (s_top - s(x)), s(x) = -g·x the height times |g|
+            let top = corners(&vector(&b.lo), &vector(&b.hi))
+                .iter()
+                .map(|c| -gravity.dot(c))
+                .fold(f64::MIN, f64::max);
+            p = rho0 * (top + gravity.dot(&x));
+        }
+        if let Some(InitialField::TaylorGreen { amplitude, wavelength }) = &case.initial {
+            let kx = 2.0 * PI / wavelength;
+            let (a, b2) = (kx * x[0], kx * x[1]);
+            u[0] = -amplitude * a.cos() * b2.sin();
+            u[1] = amplitude * a.sin() * b2.cos();
+            p = -rho0 * amplitude * amplitude / 4.0 * ((2.0 * a).cos() + (2.0 * b2).cos());
+        }
+        let rho = eos.density(p);
+        particles.push(Kind::Fluid, x, u, rho, rho * volume);
+    }
+
+    for x in wall_points::<D>(case) {
+        particles.push(Kind::Wall, x, Vector::zeros(), rho0, rho0 * volume);
+    }
+    check_overlap(&particles, dx)?;
+    let domain = domain_of(case, &particles)?;
+    Ok(Setup { particles, domain, eos, gravity })
+}
+
+fn corners<const D: usize>(lo: &Vector<D>, hi: &Vector<D>) -> Vec<Vector<D>> {
+    (0..1usize << D)
+        .map(|m| Vector::from_fn(|d, _| if m >> d & 1 == 1 { hi[d] } else { lo[d] }))
+        .collect()
+}
+
+/// c0 given, or `factor · max(U, sqrt(Δp/ρ0))` with H the fluid height along gravity,
+/// `U = max(|u0|, sqrt(2|g|H))` unless set, `Δp = ρ0|g|H`.
+fn sound_speed<const D: usize>(
+    case: &Case,
+    fluid: &[(Vector<D>, Vector<D>, usize)],
+    gravity: &Vector<D>,
+    dx: f64,
+) -> Result<f64> {
+    if let Some(c0) = case.fluid.sound_speed {
+        return Ok(c0);
+    }
+    let g = gravity.norm();
+    let height = if g > 0.0 {
+        let s: Vec<f64> = fluid.iter().map(|(x, _, _)| -gravity.dot(x) / g).collect();
+        s.iter().cloned().fold(f64::MIN, f64::max) - s.iter().cloned().fold(f64::MAX, f64::min) + dx
+    } else {
+        0.0
+    };
+    let mut u0 = fluid.iter().map(|(_, u, _)| u.norm()).fold(0.0, f64::max);
+    if let Some(InitialField::TaylorGreen { amplitude, .. }) = &case.initial {
+        u0 = u0.max(amplitude.abs());
+    }
+    let u_max = case.fluid.max_velocity.unwrap_or(u0.max((2.0 * g * height).sqrt()));
+    let rho0 = case.fluid.density;
+    let c0 = LinearEos::sound_speed_rule(case.fluid.sound_speed_factor, u_max, rho0 * g * height, rho0);
+    if c0 > 0.0 {
+        Ok(c0)
+    } else {
+        Err(SphError::invalid(
+            "fluid.sound_speed",
+            "(missing)",
+            "a sound speed: with no gravity and no initial velocity it cannot be derived",
+        ))
+    }
+}
+
+fn wall_points<const D: usize>(case: &Case) -> Vec<Vector<D>> {
+    let dx = case.dx();
+    let mut points = Vec::new();
+    for t in &case.tank {
+        let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
+        let pad = Vector::<D>::repeat(t.layers as f64 * dx);
+        let default_open = [format!("+{}", ["x", "y", "z"][D - 1])];
+        let open: Vec<(usize, i8)> = t
+            .open
+            .as_deref()
+            .unwrap_or(&default_open)
+            .iter()
+            .filter_map(|f| face_axis(f, D))
+            .collect();
+        points.extend(lattice(&(lo - pad), &(hi + pad), dx).into_iter().filter(|x| {
+            let outside = (0..D).any(|d| x[d] < lo[d] || x[d] > hi[d]);
+            let beyond_open = open
+                .iter()
+                .any(|&(d, s)| if s > 0 { x[d] > hi[d] } else { x[d] < lo[d] });
+            outside && !beyond_open
+        }));
+    }
+    for b in &case.wall {
+        points.extend(lattice(&vector(&b.lo), &vector(&b.hi), dx));
+    }
+    points
+}
+
+/// No fluid particle may sit closer than Δx/2 to a wall particle.
+fn check_overlap<const D: usize>(particles: &Particles<D>, dx: f64) -> Result<()> {
+    let cell = |x: &Vector<D>| -> [i64; D] { std::array::from_fn(|d| (x[d] / dx).floor() as i64) };
+    let mut walls: HashMap<[i64; D], Vec<usize>> = HashMap::new();
+    for i in (0..particles.len()).filter(|&i| particles.kind[i] == Kind::Wall) {
+        walls.entry(cell(&particles.x[i])).or_default().push(i);
+    }
+    let min = 0.5 * dx * (1.0 - 1e-6);
+    for i in (0..particles.len()).filter(|&i| particles.kind[i] == Kind::Fluid) {
+        let c = cell(&particles.x[i]);
+        for m in 0..3usize.pow(D as u32) {
+            let mut key = c;
+            let mut rem = m;
+            for k in key.iter_mut() {
+                *k += (rem % 3) as i64 - 1;
+                rem /= 3;
+            }
+            for &w in walls.get(&key).into_iter().flatten() {
+                let r = (particles.x[i] - particles.x[w]).norm();
+                if r < min {
+                    return Err(SphError::invalid(
+                        "fluid_block",
+                        format!("a fluid particle at {:?}", particles.x[i].as_slice()),
+                        format!(
+                            "fluid clear of walls (it lies {r:.3e} m from the wall particle at {:?}; \
+                             keep at least Δx/2)",
+                            particles.x[w].as_slice()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Domain<D>> {
+    let Some(dom) = &case.domain else {
+        return Ok(Domain::open());
+    };
+    let periodic: [bool; D] = std::array::from_fn(|d| dom.periodic[d]);
+    let (lo, hi): (Vector<D>, Vector<D>) = (vector(&dom.lo), vector(&dom.hi));
+    let support = case.h() * case.particles.kernel.support();
+    for d in (0..D).filter(|&d| periodic[d]) {
+        let period = hi[d] - lo[d];
+        if period < 3.3 * support {
+            return Err(SphError::invalid(
+                "domain.hi",
+                format!("{:?}", dom.hi),
+                format!("a periodic length of at least 3.3 kernel supports ({:.4} m)", 3.3 * support),
+            ));
+        }
+    }
+    for (x, kind) in particles.x.iter().zip(&particles.kind) {
+        if (0..D).any(|d| periodic[d] && (x[d] < lo[d] || x[d] > hi[d])) {
+            return Err(SphError::invalid(
+                "domain",
+                format!("lo = {:?}, hi = {:?}", dom.lo, dom.hi),
+                format!("a box holding every {kind:?} particle along its periodic axes"),
+            ));
+        }
+    }
+    Ok(Domain::new(lo, hi, periodic))
+}

@@ -1,0 +1,175 @@
+//! Time integration of `dw/dt = Q(w) + D(w)`, D the density-diffusion part.
+//!
+//! - [`Rk4`]: classical Runge-Kutta 4 with the diffusive term frozen at the start of
+//!   the step (Antuono et al. 2010, CPC 181:532; SCHEME.md §6), so that the δ-SPH
+//!   gradient pre-pass runs once per step, not four times:
+//!   ```text
+//!   w1 = w0 + Δt/2 [Q(w0) + D(w0)]      w2 = w0 + Δt/2 [Q(w1) + D(w0)]
+//!   w3 = w0 + Δt   [Q(w2) + D(w0)]
+//!   w  = w0 + Δt/6 [Q(w0) + 2Q(w1) + 2Q(w2) + Q(w3)] + Δt D(w0)
+//!   ```
+//! - [`Symplectic`]: the second-order symplectic predictor-corrector common in WCSPH
+//!   codes (Monaghan 2005, Rep. Prog. Phys. 68:1703; DualSPHysics, Crespo et al. 2015):
+//!   `u½ = u + Δt/2 a(w)`, `ρ½ = ρ + Δt/2 ρ̇(w)`, `x½ = x + Δt/2 u`, then
+//!   `u' = u + Δt a(w½)`, `ρ' = ρ + Δt ρ̇(w½)`, `x' = x + Δt (u + u')/2`.
+//!   Two force evaluations per step, diffusion in both.
+
+use crate::domain::Domain;
+use crate::equations::{Model, Rates};
+use crate::neighbours::NeighbourList;
+use crate::particles::{Particles, Vector};
+use rayon::prelude::*;
+
+/// What a step needs besides the particles.
+pub struct Context<'a, const D: usize> {
+    pub model: &'a mut dyn Model<D>,
+    pub list: &'a NeighbourList<D>,
+    pub domain: &'a Domain<D>,
+}
+
+/// A time integrator. `begin` evaluates the rates at the start of the step (the time
+/// step is chosen from them), `advance` completes the step.
+pub trait TimeIntegrator<const D: usize>: Send {
+    /// Force evaluations (pair loops) per step.
+    fn evaluations_per_step(&self) -> usize;
+    fn begin(&mut self, particles: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D>;
+    fn advance(&mut self, dt: f64, particles: &mut Particles<D>, cx: &mut Context<D>);
+}
+
+/// The state `w = (x, u, ρ)` at the start of a step.
+#[derive(Default)]
+struct Saved<const D: usize> {
+    x: Vec<Vector<D>>,
+    u: Vec<Vector<D>>,
+    rho: Vec<f64>,
+}
+
+impl<const D: usize> Saved<D> {
+    fn save(&mut self, p: &Particles<D>) {
+        self.x.clone_from(&p.x);
+        self.u.clone_from(&p.u);
+        self.rho.clone_from(&p.rho);
+    }
+}
+
+/// RK4 with frozen diffusion.
+#[derive(Default)]
+pub struct Rk4<const D: usize> {
+    w0: Saved<D>,
+    rates: Rates<D>,
+    /// Weighted sums Q(w0) + 2Q(w1) + 2Q(w2) + Q(w3), per component.
+    acc_x: Vec<Vector<D>>,
+    acc_u: Vec<Vector<D>>,
+    acc_rho: Vec<f64>,
+    /// D(w0), frozen over the step.
+    diff0: Vec<f64>,
+}
+
+impl<const D: usize> Rk4<D> {
+    /// Adds `weight · Q(w_k)` to the sums and moves the state to `w0 + c Q(w_k) + Δt D(w0)·c/Δt`.
+    fn stage(&mut self, p: &mut Particles<D>, weight: f64, c: f64) {
+        let w0 = &self.w0;
+        let r = &self.rates;
+        p.x.par_iter_mut()
+            .zip(p.u.par_iter_mut())
+            .zip(p.rho.par_iter_mut())
+            .zip(self.acc_x.par_iter_mut())
+            .zip(self.acc_u.par_iter_mut())
+            .zip(self.acc_rho.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (((((x, u), rho), ax), au), ar))| {
+                let uk = *u;
+                *ax += uk * weight;
+                *au += r.du[i] * weight;
+                *ar += r.drho[i] * weight;
+                *x = w0.x[i] + uk * c;
+                *u = w0.u[i] + r.du[i] * c;
+                *rho = w0.rho[i] + (r.drho[i] + self.diff0[i]) * c;
+            });
+    }
+}
+
+impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
+    fn evaluations_per_step(&self) -> usize {
+        4
+    }
+
+    fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
+        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        &self.rates
+    }
+
+    fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
+        let n = p.len();
+        self.w0.save(p);
+        self.diff0.clone_from(&self.rates.drho_diff);
+        self.acc_x.clear();
+        self.acc_x.resize(n, Vector::zeros());
+        self.acc_u.clear();
+        self.acc_u.resize(n, Vector::zeros());
+        self.acc_rho.clear();
+        self.acc_rho.resize(n, 0.0);
+        self.stage(p, 1.0, 0.5 * dt);
+        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        self.stage(p, 2.0, 0.5 * dt);
+        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        self.stage(p, 2.0, dt);
+        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        let (w0, r) = (&self.w0, &self.rates);
+        let (ax, au, ar, d0) = (&self.acc_x, &self.acc_u, &self.acc_rho, &self.diff0);
+        let s = dt / 6.0;
+        p.x.par_iter_mut()
+            .zip(p.u.par_iter_mut())
+            .zip(p.rho.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, ((x, u), rho))| {
+                *x = w0.x[i] + (ax[i] + *u) * s;
+                *rho = w0.rho[i] + (ar[i] + r.drho[i]) * s + d0[i] * dt;
+                *u = w0.u[i] + (au[i] + r.du[i]) * s;
+            });
+    }
+}
+
+/// Second-order symplectic predictor-corrector.
+#[derive(Default)]
+pub struct Symplectic<const D: usize> {
+    w0: Saved<D>,
+    rates: Rates<D>,
+}
+
+impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
+    fn evaluations_per_step(&self) -> usize {
+        2
+    }
+
+    fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
+        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        &self.rates
+    }
+
+    fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
+        self.w0.save(p);
+        let half = 0.5 * dt;
+        let r = &self.rates;
+        p.x.par_iter_mut()
+            .zip(p.u.par_iter_mut())
+            .zip(p.rho.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, ((x, u), rho))| {
+                *x += *u * half;
+                *u += r.du[i] * half;
+                *rho += (r.drho[i] + r.drho_diff[i]) * half;
+            });
+        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        let (w0, r) = (&self.w0, &self.rates);
+        p.x.par_iter_mut()
+            .zip(p.u.par_iter_mut())
+            .zip(p.rho.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, ((x, u), rho))| {
+                *u = w0.u[i] + r.du[i] * dt;
+                *rho = w0.rho[i] + (r.drho[i] + r.drho_diff[i]) * dt;
+                *x = w0.x[i] + (w0.u[i] + *u) * half;
+            });
+    }
+}

@@ -1,0 +1,32 @@
+//! deltasph core: a weakly-compressible SPH solver of the δ-SPH family
+//! (Antuono, Colagrossi, Marrone et al.), dimension-generic (2D and 3D).
+//!
+//! The data flow of a run: [`case::Case`] (parsed and validated TOML) →
+//! [`geometry::build`] (particles, EOS, domain) → [`scheme::build_model`] (options
+//! resolved once into a monomorphised [`equations::Scheme`]) → [`simulation::Simulation`]
+//! stepping with an [`integrator`] → [`diagnostics`] and [`output`].
+
+pub mod boundary;
+pub mod case;
+pub mod diagnostics;
+pub mod diffusion;
+pub mod domain;
+pub mod eos;
+pub mod equations;
+pub mod error;
+pub mod geometry;
+pub mod integrator;
+pub mod kernel;
+pub mod neighbours;
+pub mod output;
+pub mod particles;
+pub mod renormalisation;
+pub mod scheme;
+pub mod simulation;
+pub mod timestep;
+pub mod viscosity;
+
+pub use case::Case;
+pub use error::{Result, SphError};
+pub use particles::{Kind, Particles, Vector};
+pub use simulation::Simulation;

@@ -1,0 +1,177 @@
+//! Output a user can open: HDF5 particle snapshots indexed by an XDMF file (ParaView
+//! and VisIt read the time series directly), and CSV time series.
+//!
+//! Every file is written under a temporary name and renamed into place, so a run
+//! that is killed leaves only complete files. An existing, non-empty output folder
+//! is never reused unless the caller explicitly allows it.
+
+use crate::error::{Result, SphError};
+use crate::particles::{Kind, Particles};
+use std::fs::{self, File};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// One snapshot listed in the XDMF index.
+#[derive(Debug, Clone)]
+struct Entry {
+    file: String,
+    time: f64,
+    n: usize,
+}
+
+/// The output folder of one run.
+pub struct Output {
+    dir: PathBuf,
+    entries: Vec<Entry>,
+    series: Option<BufWriter<File>>,
+}
+
+impl Output {
+    /// Creates `dir`; refuses a non-empty existing folder unless `overwrite`.
+    pub fn create(dir: &Path, overwrite: bool) -> Result<Self> {
+        if dir.exists() {
+            let non_empty = fs::read_dir(dir).map_err(|e| SphError::output(dir, e))?.next().is_some();
+            if non_empty && !overwrite {
+                return Err(SphError::output(
+                    dir,
+                    "folder exists and is not empty; choose another --out or pass --force to overwrite",
+                ));
+            }
+            if non_empty {
+                fs::remove_dir_all(dir).map_err(|e| SphError::output(dir, e))?;
+            }
+        }
+        fs::create_dir_all(dir).map_err(|e| SphError::output(dir, e))?;
+        Ok(Self { dir: dir.to_path_buf(), entries: Vec::new(), series: None })
+    }
+
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Writes a text file atomically inside the folder.
+    pub fn write_text(&self, name: &str, text: &str) -> Result<()> {
+        atomic_write(&self.dir.join(name), |tmp| fs::write(tmp, text).map_err(|e| e.to_string()))
+    }
+
+    /// Writes one HDF5 snapshot and refreshes the XDMF index.
+    pub fn snapshot<const D: usize>(&mut self, p: &Particles<D>, time: f64, step: u64) -> Result<PathBuf> {
+        let name = format!("particles_{:06}.h5", self.entries.len());
+        let path = self.dir.join(&name);
+        write_snapshot(&path, p, time, step)?;
+        self.entries.push(Entry { file: name, time, n: p.len() });
+        self.write_text("particles.xmf", &xdmf(&self.entries))?;
+        Ok(path)
+    }
+
+    /// Starts the CSV time series `timeseries.csv` with the given column names.
+    pub fn start_series(&mut self, columns: &[String]) -> Result<()> {
+        let path = self.dir.join("timeseries.csv");
+        let file = File::create(&path).map_err(|e| SphError::output(&path, e))?;
+        let mut w = BufWriter::new(file);
+        writeln!(w, "{}", columns.join(",")).map_err(|e| SphError::output(&path, e))?;
+        self.series = Some(w);
+        Ok(())
+    }
+
+    /// Appends one row (flushed, so a killed run keeps every row written).
+    pub fn series_row(&mut self, values: &[f64]) -> Result<()> {
+        let path = self.dir.join("timeseries.csv");
+        if let Some(w) = self.series.as_mut() {
+            let row: Vec<String> = values.iter().map(|v| format!("{v:.10e}")).collect();
+            writeln!(w, "{}", row.join(",")).and_then(|_| w.flush()).map_err(|e| SphError::output(&path, e))?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes `f(tmp)` to a temporary sibling of `path`, then renames it into place.
+fn atomic_write(path: &Path, f: impl FnOnce(&Path) -> std::result::Result<(), String>) -> Result<()> {
+    let tmp = path.with_extension(format!(
+        "{}.partial",
+        path.extension().and_then(|e| e.to_str()).unwrap_or("")
+    ));
+    f(&tmp).map_err(|e| SphError::output(path, e))?;
+    fs::rename(&tmp, path).map_err(|e| SphError::output(path, e))
+}
+
+/// Positions and velocities padded to three components (what ParaView expects).
+fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Vec<f64> {
+    v.iter().flat_map(|x| (0..3).map(move |d| if d < D { x[d] } else { 0.0 })).collect()
+}
+
+/// Writes one HDF5 snapshot: `position`, `velocity` (N×3), `density`, `pressure`,
+/// `kind` (0 fluid, 1 wall), `id`; attributes `time`, `step`, `dimension`.
+pub fn write_snapshot<const D: usize>(path: &Path, p: &Particles<D>, time: f64, step: u64) -> Result<()> {
+    atomic_write(path, |tmp| {
+        write_h5(tmp, p, time, step).map_err(|e| e.to_string())
+    })
+}
+
+fn write_h5<const D: usize>(path: &Path, p: &Particles<D>, time: f64, step: u64) -> hdf5::Result<()> {
+    let file = hdf5::File::create(path)?;
+    let n = p.len();
+    file.new_dataset::<f64>().shape((n, 3)).create("position")?.write_raw(&padded(&p.x))?;
+    file.new_dataset::<f64>().shape((n, 3)).create("velocity")?.write_raw(&padded(&p.u))?;
+    file.new_dataset::<f64>().shape(n).create("density")?.write_raw(&p.rho)?;
+    file.new_dataset::<f64>().shape(n).create("pressure")?.write_raw(&p.p)?;
+    let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
+    file.new_dataset::<u8>().shape(n).create("kind")?.write_raw(&kind)?;
+    file.new_dataset::<u32>().shape(n).create("id")?.write_raw(&p.id)?;
+    file.new_attr::<f64>().create("time")?.write_scalar(&time)?;
+    file.new_attr::<u64>().create("step")?.write_scalar(&step)?;
+    file.new_attr::<u32>().create("dimension")?.write_scalar(&(D as u32))?;
+    file.close()
+}
+
+/// Reads back a snapshot's positions (N×3, row-major), pressure and kind.
+pub fn read_snapshot(path: &Path) -> Result<(Vec<f64>, Vec<f64>, Vec<Kind>)> {
+    let read = || -> hdf5::Result<_> {
+        let f = hdf5::File::open(path)?;
+        let x = f.dataset("position")?.read_raw::<f64>()?;
+        let p = f.dataset("pressure")?.read_raw::<f64>()?;
+        let k = f.dataset("kind")?.read_raw::<u8>()?;
+        Ok((x, p, k.iter().map(|&k| if k == 0 { Kind::Fluid } else { Kind::Wall }).collect()))
+    };
+    read().map_err(|e| SphError::output(path, e))
+}
+
+fn xdmf(entries: &[Entry]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n  \
+         <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+    );
+    for e in entries {
+        let item = |name: &str, dims: &str, ty: &str, prec: usize| {
+            format!(
+                "<DataItem Dimensions=\"{dims}\" NumberType=\"{ty}\" Precision=\"{prec}\" \
+                 Format=\"HDF\">{}:/{name}</DataItem>",
+                e.file
+            )
+        };
+        let (n, n3) = (e.n.to_string(), format!("{} 3", e.n));
+        let scalar = |name: &str, ty: &str, prec: usize| {
+            format!(
+                "    <Attribute Name=\"{name}\" AttributeType=\"Scalar\" Center=\"Node\">{}</Attribute>\n",
+                item(name, &n, ty, prec)
+            )
+        };
+        s += &format!("   <Grid Name=\"{}\" GridType=\"Uniform\">\n", e.file);
+        s += &format!("    <Time Value=\"{:.9e}\"/>\n", e.time);
+        s += &format!(
+            "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\"/>\n",
+            e.n
+        );
+        s += &format!("    <Geometry GeometryType=\"XYZ\">{}</Geometry>\n", item("position", &n3, "Float", 8));
+        s += &format!(
+            "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">{}</Attribute>\n",
+            item("velocity", &n3, "Float", 8)
+        );
+        s += &scalar("density", "Float", 8);
+        s += &scalar("pressure", "Float", 8);
+        s += &scalar("kind", "UChar", 1);
+        s += &scalar("id", "UInt", 4);
+        s += "   </Grid>\n";
+    }
+    s + "  </Grid>\n </Domain>\n</Xdmf>\n"
+}

@@ -1,0 +1,78 @@
+//! Turns the case's scheme options into a monomorphised [`Scheme`] behind `dyn Model`:
+//! the only place where options are matched. Everything below runs without a
+//! per-pair branch on them.
+
+use crate::case::{Case, DiffusionChoice, ViscosityChoice, WallCondition};
+use crate::diffusion::{DeltaSph, DensityDiffusion, Ferrari, MolteniColagrossi, NoDiffusion};
+use crate::equations::{Model, Physics, Scheme};
+use crate::kernel::{CubicSpline, Gaussian, Kernel, KernelChoice, QuinticSpline, WendlandC2, WendlandC4};
+use crate::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
+
+/// Builds the model a case asks for, with physical constants already resolved.
+pub fn build_model<const D: usize>(case: &Case, physics: Physics<D>) -> Box<dyn Model<D>> {
+    let h = case.h();
+    match case.particles.kernel {
+        KernelChoice::WendlandC2 => with_kernel(case, physics, WendlandC2::new(h, D)),
+        KernelChoice::WendlandC4 => with_kernel(case, physics, WendlandC4::new(h, D)),
+        KernelChoice::CubicSpline => with_kernel(case, physics, CubicSpline::new(h, D)),
+        KernelChoice::QuinticSpline => with_kernel(case, physics, QuinticSpline::new(h, D)),
+        KernelChoice::Gaussian => with_kernel(case, physics, Gaussian::new(h, D)),
+    }
+}
+
+fn with_kernel<const D: usize, K: Kernel>(case: &Case, physics: Physics<D>, kernel: K) -> Box<dyn Model<D>> {
+    let s = &case.scheme;
+    let delta = s.delta;
+    match s.diffusion {
+        DiffusionChoice::None => with_diffusion(case, physics, kernel, NoDiffusion),
+        DiffusionChoice::MolteniColagrossi => {
+            with_diffusion(case, physics, kernel, MolteniColagrossi { delta })
+        }
+        DiffusionChoice::Ferrari => {
+            with_diffusion(case, physics, kernel, Ferrari { delta, h: kernel.h() })
+        }
+        DiffusionChoice::DeltaSph => with_diffusion(case, physics, kernel, DeltaSph { delta }),
+    }
+}
+
+fn with_diffusion<const D: usize, K: Kernel, Df: DensityDiffusion<D>>(
+    case: &Case,
+    physics: Physics<D>,
+    kernel: K,
+    diffusion: Df,
+) -> Box<dyn Model<D>> {
+    match viscosity_k(case, &physics) {
+        None => finish(physics, kernel, diffusion, Inviscid),
+        Some(k) => finish(physics, kernel, diffusion, Viscous { k }),
+    }
+}
+
+fn finish<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity>(
+    physics: Physics<D>,
+    kernel: K,
+    diffusion: Df,
+    viscosity: V,
+) -> Box<dyn Model<D>> {
+    Box::new(Scheme::new(kernel, diffusion, viscosity, physics))
+}
+
+/// The viscous constant K, or `None` when the case has no viscous term.
+pub fn viscosity_k<const D: usize>(case: &Case, physics: &Physics<D>) -> Option<f64> {
+    let s = &case.scheme;
+    let k = match s.viscosity {
+        ViscosityChoice::None => 0.0,
+        ViscosityChoice::Artificial => {
+            artificial_k(s.alpha(), case.h(), physics.eos.c0, physics.eos.rho0)
+        }
+        ViscosityChoice::Physical => physical_k(s.dynamic_viscosity.unwrap_or(0.0), D),
+    };
+    (k > 0.0).then_some(k)
+}
+
+/// 1 for no-slip walls, 0 for free-slip (see [`Physics::wall_viscous_weight`]).
+pub fn wall_viscous_weight(walls: WallCondition) -> f64 {
+    match walls {
+        WallCondition::NoSlip => 1.0,
+        WallCondition::FreeSlip => 0.0,
+    }
+}

@@ -1,0 +1,263 @@
+//! A running simulation: particles, neighbour lists, the resolved scheme and the
+//! integrator, advanced step by step. The CLI (and any other front) drives this type.
+
+use crate::case::{Case, IntegratorChoice};
+use crate::diagnostics::{self, Energies};
+use crate::domain::Domain;
+use crate::equations::{Model, Physics, Powers};
+use crate::error::{Result, SphError};
+use crate::geometry;
+use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
+use crate::neighbours::NeighbourList;
+use crate::particles::{Kind, Particles, Vector};
+use crate::scheme::{build_model, viscosity_k, wall_viscous_weight};
+use crate::timestep::TimeStepControl;
+use crate::viscosity::equivalent_nu;
+use rayon::prelude::*;
+
+/// The smallest skin of the neighbour lists, as a fraction of the kernel support.
+const MIN_SKIN: f64 = 0.1;
+
+/// Counters for throughput reports.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Counters {
+    pub steps: u64,
+    pub evaluations: u64,
+    pub rebuilds: u64,
+}
+
+/// The running energy budget of SCHEME.md §10 (only when the case asks for it).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EnergyBudget {
+    /// `∫ (P_V + P_D) dt` so far (trapezoidal rule over steps).
+    pub dissipated: f64,
+    pub last: Powers,
+}
+
+pub struct Simulation<const D: usize> {
+    pub case: Case,
+    pub particles: Particles<D>,
+    pub domain: Domain<D>,
+    pub time: f64,
+    pub dt: f64,
+    pub counters: Counters,
+    pub budget: Option<EnergyBudget>,
+    model: Box<dyn Model<D>>,
+    integrator: Box<dyn TimeIntegrator<D>>,
+    list: NeighbourList<D>,
+    control: TimeStepControl,
+    max_skin: f64,
+    last_acceleration: f64,
+}
+
+impl<const D: usize> Simulation<D> {
+    /// Builds particles and scheme from a validated case.
+    pub fn new(case: Case) -> Result<Self> {
+        let setup = geometry::build::<D>(&case)?;
+        let physics = Physics {
+            eos: setup.eos,
+            gravity: setup.gravity,
+            wall_viscous_weight: wall_viscous_weight(case.scheme.walls),
+        };
+        let k = viscosity_k(&case, &physics).unwrap_or(0.0);
+        let control = TimeStepControl {
+            cfl: case.scheme.cfl(),
+            viscous_cfl: case.scheme.viscous_cfl,
+            force_cfl: case.scheme.force_cfl,
+            h: case.h(),
+            c0: setup.eos.c0,
+            nu: equivalent_nu(k, D, setup.eos.rho0),
+        };
+        let model = build_model::<D>(&case, physics);
+        let integrator: Box<dyn TimeIntegrator<D>> = match case.scheme.integrator {
+            IntegratorChoice::Rk4 => Box::<Rk4<D>>::default(),
+            IntegratorChoice::Symplectic => Box::<Symplectic<D>>::default(),
+        };
+        let support = model.support_radius();
+        let max_skin = (0..D)
+            .filter(|&d| setup.domain.is_periodic(d))
+            .map(|d| setup.domain.period[d] / 3.0 - support)
+            .fold(f64::INFINITY, f64::min);
+        let budget = case.diagnostics.energy_budget.then(EnergyBudget::default);
+        let mut sim = Self {
+            case,
+            particles: setup.particles,
+            domain: setup.domain,
+            time: 0.0,
+            dt: 0.0,
+            counters: Counters::default(),
+            budget,
+            model,
+            integrator,
+            list: NeighbourList::default(),
+            control,
+            max_skin,
+            last_acceleration: 0.0,
+        };
+        sim.rebuild(0.0);
+        sim.refresh_derived();
+        if let Some(b) = sim.budget.as_mut() {
+            b.last = sim.model.powers(&sim.particles, &sim.list, &sim.domain);
+        }
+        Ok(sim)
+    }
+
+    pub fn physics(&self) -> &Physics<D> {
+        self.model.physics()
+    }
+
+    pub fn time_step_control(&self) -> &TimeStepControl {
+        &self.control
+    }
+
+    /// Mean listed neighbours per particle (fluid and walls).
+    pub fn mean_neighbours(&self) -> f64 {
+        self.list.mean_neighbours()
+    }
+
+    fn max_speed(&self) -> f64 {
+        self.particles.u.par_iter().map(|u| u.norm_squared()).reduce(|| 0.0, f64::max).sqrt()
+    }
+
+    /// Largest displacement one step may add: `Δt_max (|u|max + |a|max Δt_max)`.
+    fn step_reach(&self) -> f64 {
+        let dt = self.control.acoustic();
+        dt * (1.2 * self.max_speed() + self.last_acceleration * dt)
+    }
+
+    /// Rebuilds lists (and reorders particles by cell) with a skin covering `reach`.
+    fn rebuild(&mut self, reach: f64) {
+        let support = self.model.support_radius();
+        let skin = (MIN_SKIN * support).max(2.5 * reach).min(self.max_skin);
+        let (list, _) = NeighbourList::build(&mut self.particles, &self.domain, support, skin);
+        self.list = list;
+        self.counters.rebuilds += 1;
+    }
+
+    /// Pressure of fluid and walls for the current state (for output and probes).
+    fn refresh_derived(&mut self) {
+        let mut rates = crate::equations::Rates::default();
+        self.model.evaluate(&mut self.particles, &self.list, &self.domain, &mut rates, true);
+        self.last_acceleration = rates.max_acceleration();
+    }
+
+    /// Advances one step; on blow-up returns [`SphError::Unstable`] and leaves the
+    /// (non-finite or runaway) state in place for a final snapshot.
+    pub fn step(&mut self) -> Result<()> {
+        let reach = self.step_reach();
+        if self.list.needs_rebuild(&self.particles.x, &self.domain, reach) {
+            self.rebuild(reach);
+        }
+        let mut cx = Context { model: self.model.as_mut(), list: &self.list, domain: &self.domain };
+        let a_max = self.integrator.begin(&mut self.particles, &mut cx).max_acceleration();
+        let mut dt = self.control.dt(a_max);
+        let remaining = self.case.time.end - self.time;
+        if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
+            dt = remaining;
+        }
+        self.integrator.advance(dt, &mut self.particles, &mut cx);
+        let domain = self.domain;
+        self.particles.x.par_iter_mut().for_each(|x| domain.wrap(x));
+        self.last_acceleration = a_max;
+        self.dt = dt;
+        self.time += dt;
+        self.counters.steps += 1;
+        self.counters.evaluations += self.integrator.evaluations_per_step() as u64;
+        if self.budget.is_some() {
+            self.refresh_derived();
+            let now = self.model.powers(&self.particles, &self.list, &self.domain);
+            let b = self.budget.as_mut().unwrap();
+            b.dissipated += 0.5 * dt * (b.last.viscous + b.last.diffusive + now.viscous + now.diffusive);
+            b.last = now;
+        }
+        self.check_stability()
+    }
+
+    fn check_stability(&self) -> Result<()> {
+        let eos = self.physics().eos;
+        let limit = self.case.stability.max_density_variation;
+        match diagnostics::find_instability(&self.particles, eos.rho0, limit) {
+            None => Ok(()),
+            Some((i, reason)) => Err(SphError::Unstable {
+                time: self.time,
+                step: self.counters.steps,
+                particle: self.particles.id[i],
+                position: format!("{:?}", self.particles.x[i].as_slice()),
+                reason,
+            }),
+        }
+    }
+
+    /// Brings pressures (fluid and walls) up to date with the current state. Call
+    /// before writing output or reading pressure after steps.
+    pub fn sync_pressure(&mut self) {
+        self.refresh_derived();
+    }
+
+    pub fn energies(&self) -> Energies {
+        let ph = self.physics();
+        diagnostics::energies(&self.particles, &ph.eos, &ph.gravity)
+    }
+
+    pub fn max_density_variation(&self) -> f64 {
+        diagnostics::max_density_variation(&self.particles, self.physics().eos.rho0)
+    }
+
+    /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first).
+    pub fn probe_pressure(&self, point: &Vector<D>) -> f64 {
+        diagnostics::probe_pressure(self.model.as_ref(), &self.particles, &self.list, &self.domain, point)
+    }
+
+    pub fn surge_front(&self, axis: usize) -> f64 {
+        diagnostics::surge_front(&self.particles, axis)
+    }
+
+    pub fn n_fluid(&self) -> usize {
+        self.particles.kind.iter().filter(|&&k| k == Kind::Fluid).count()
+    }
+}
+
+/// The time-series columns a case asks for, and their values now.
+impl<const D: usize> Simulation<D> {
+    pub fn series_header(&self) -> Vec<String> {
+        let mut h: Vec<String> = ["time", "step", "dt"].map(String::from).to_vec();
+        let diag = &self.case.diagnostics;
+        if diag.energy || diag.energy_budget {
+            h.extend(["kinetic", "potential", "internal", "total"].map(String::from));
+        }
+        if self.budget.is_some() {
+            h.extend(["dissipated", "viscous_power", "diffusive_power"].map(String::from));
+        }
+        h.push("max_density_variation".into());
+        h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
+        if diag.surge_front_axis.is_some() {
+            h.push("surge_front".into());
+        }
+        h
+    }
+
+    /// One row matching [`Self::series_header`]; refreshes pressures when probes need them.
+    pub fn series_values(&mut self) -> Vec<f64> {
+        let diag = self.case.diagnostics.clone();
+        let mut v = vec![self.time, self.counters.steps as f64, self.dt];
+        if diag.energy || diag.energy_budget {
+            let e = self.energies();
+            v.extend([e.kinetic, e.potential, e.internal, e.total()]);
+        }
+        if let Some(b) = self.budget {
+            v.extend([b.dissipated, b.last.viscous, b.last.diffusive]);
+        }
+        v.push(self.max_density_variation());
+        if !diag.probes.is_empty() {
+            self.sync_pressure();
+            for probe in &diag.probes {
+                let point = Vector::<D>::from_fn(|d, _| probe[d]);
+                v.push(self.probe_pressure(&point));
+            }
+        }
+        if let Some(axis) = diag.surge_front_axis {
+            v.push(self.surge_front(axis));
+        }
+        v
+    }
+}

@@ -1,0 +1,55 @@
+//! Support shared by the physics test suite (`tests/`) and the benchmarks (`benches/`):
+//! loading the example cases with overrides, and small fitting helpers.
+
+use sph_core::Case;
+use std::path::{Path, PathBuf};
+
+/// Path of a file under `examples/`.
+pub fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)
+}
+
+/// Path of a reference data file under `../shared/refdata/`.
+pub fn refdata(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/refdata").join(name)
+}
+
+/// Loads an example case after applying `overrides`, TOML snippets of the form
+/// `"table.key = value"` (or `"key = value"` at the top level).
+pub fn example_case(name: &str, overrides: &[&str]) -> Case {
+    let text = std::fs::read_to_string(example(name)).expect("example case exists");
+    let mut table: toml::Table = text.parse().expect("example case is valid TOML");
+    for o in overrides {
+        let (path, value) = o.split_once('=').expect("override is key = value");
+        let value: toml::Table = format!("v = {}", value.trim()).parse().expect("override value parses");
+        let keys: Vec<&str> = path.trim().split('.').collect();
+        let mut t = &mut table;
+        for k in &keys[..keys.len() - 1] {
+            t = t
+                .entry(k.to_string())
+                .or_insert_with(|| toml::Value::Table(Default::default()))
+                .as_table_mut()
+                .expect("override path runs through tables");
+        }
+        t.insert(keys[keys.len() - 1].to_string(), value["v"].clone());
+    }
+    Case::from_table(table).unwrap_or_else(|e| panic!("{name} with {overrides:?}: {e}"))
+}
+
+/// Reads a CSV file whose comment lines start with `#`; returns the header and rows.
+pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty());
+    let header = lines.next().expect("header").split(',').map(|s| s.trim().to_string()).collect();
+    let rows = lines.map(|l| l.split(',').map(|v| v.trim().parse().expect("number")).collect()).collect();
+    (header, rows)
+}
+
+/// Least-squares slope of `y` against `x`.
+pub fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}

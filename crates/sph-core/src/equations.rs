@@ -54,6 +54,16 @@ pub struct Powers {
     pub viscous: f64,
     /// Diffusive power `P_D = Σ m_i (p_i/ρ_i²) δ h c0 D_i`.
     pub diffusive: f64,
+    /// Power exchanged with the dummy walls, `P_W = -Σ_i Σ_w V_i V_w p_w u_i·∇_iW_iw`.
+    /// The extrapolated wall pressure is not derived from an energy, so the walls store
+    /// and return energy like springs; the balance closes only with this term.
+    pub wall: f64,
+}
+
+impl Powers {
+    pub fn total(&self) -> f64 {
+        self.viscous + self.diffusive + self.wall
+    }
 }
 
 /// Physical constants every scheme shares.
@@ -221,6 +231,19 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             });
     }
 
+    /// `Σ_w p_w ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
+    fn wall_force(&self, i: usize, p: &Particles<D>, list: &NeighbourList<D>, domain: &Domain<D>) -> Vector<D> {
+        list.of(i)
+            .iter()
+            .map(|&j| j as usize)
+            .filter(|&j| p.kind[j] == Kind::Wall)
+            .map(|j| {
+                let x_ij = domain.separation(&p.x[i], &p.x[j]);
+                x_ij * (self.kernel.dw_over_r(x_ij.norm()) * p.p[j] * p.mass[j] / p.rho[j])
+            })
+            .sum()
+    }
+
     fn update_pressure(&self, particles: &mut Particles<D>) {
         let eos = self.physics.eos;
         particles
@@ -285,11 +308,13 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
                 Powers {
                     viscous: m * particles.u[i].dot(&s.viscous) * k / rho,
                     diffusive: m * p / (rho * rho) * scale * s.diffusion,
+                    wall: -m / rho * particles.u[i].dot(&self.wall_force(i, particles, list, domain)),
                 }
             })
             .reduce(Powers::default, |a, b| Powers {
                 viscous: a.viscous + b.viscous,
                 diffusive: a.diffusive + b.diffusive,
+                wall: a.wall + b.wall,
             })
     }
 

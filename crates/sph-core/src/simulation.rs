@@ -4,7 +4,7 @@
 use crate::case::{Case, IntegratorChoice};
 use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
-use crate::equations::{Model, Physics, Powers};
+use crate::equations::{Model, Physics, Powers, Rates};
 use crate::error::{Result, SphError};
 use crate::geometry;
 use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
@@ -29,7 +29,7 @@ pub struct Counters {
 /// The running energy budget of SCHEME.md §10 (only when the case asks for it).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct EnergyBudget {
-    /// `∫ (P_V + P_D) dt` so far (trapezoidal rule over steps).
+    /// `∫ (P_V + P_D + P_W) dt` so far (trapezoidal rule over steps).
     pub dissipated: f64,
     pub last: Powers,
 }
@@ -136,9 +136,16 @@ impl<const D: usize> Simulation<D> {
 
     /// Pressure of fluid and walls for the current state (for output and probes).
     fn refresh_derived(&mut self) {
-        let mut rates = crate::equations::Rates::default();
-        self.model.evaluate(&mut self.particles, &self.list, &self.domain, &mut rates, true);
+        let rates = self.rates();
         self.last_acceleration = rates.max_acceleration();
+    }
+
+    /// The rates `dρ/dt` (without and with diffusion) and `du/dt` at the current state,
+    /// in the current particle order.
+    pub fn rates(&mut self) -> Rates<D> {
+        let mut rates = Rates::default();
+        self.model.evaluate(&mut self.particles, &self.list, &self.domain, &mut rates, true);
+        rates
     }
 
     /// Advances one step; on blow-up returns [`SphError::Unstable`] and leaves the
@@ -167,7 +174,7 @@ impl<const D: usize> Simulation<D> {
             self.refresh_derived();
             let now = self.model.powers(&self.particles, &self.list, &self.domain);
             let b = self.budget.as_mut().unwrap();
-            b.dissipated += 0.5 * dt * (b.last.viscous + b.last.diffusive + now.viscous + now.diffusive);
+            b.dissipated += 0.5 * dt * (b.last.total() + now.total());
             b.last = now;
         }
         self.check_stability()
@@ -226,7 +233,7 @@ impl<const D: usize> Simulation<D> {
             h.extend(["kinetic", "potential", "internal", "total"].map(String::from));
         }
         if self.budget.is_some() {
-            h.extend(["dissipated", "viscous_power", "diffusive_power"].map(String::from));
+            h.extend(["work_of_dissipation_and_walls", "viscous_power", "diffusive_power", "wall_power"].map(String::from));
         }
         h.push("max_density_variation".into());
         h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
@@ -245,7 +252,7 @@ impl<const D: usize> Simulation<D> {
             v.extend([e.kinetic, e.potential, e.internal, e.total()]);
         }
         if let Some(b) = self.budget {
-            v.extend([b.dissipated, b.last.viscous, b.last.diffusive]);
+            v.extend([b.dissipated, b.last.viscous, b.last.diffusive, b.last.wall]);
         }
         v.push(self.max_density_variation());
         if !diag.probes.is_empty() {

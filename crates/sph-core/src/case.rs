@@ -73,6 +73,9 @@ pub struct FluidConfig {
     pub sound_speed: Option<f64>,
     #[serde(default = "default_sound_speed_factor")]
     pub sound_speed_factor: f64,
+    /// Background pressure p_b [Pa] added to the EOS (confined flows only).
+    #[serde(default)]
+    pub background_pressure: f64,
     /// U_max for the sound-speed rule; default `max(|u0|, sqrt(2 |g| H))`, H the fluid height.
     #[serde(default)]
     pub max_velocity: Option<f64>,
@@ -356,6 +359,7 @@ impl Case {
             positive("fluid.sound_speed", c0)?;
         }
         positive("fluid.sound_speed_factor", self.fluid.sound_speed_factor)?;
+        non_negative("fluid.background_pressure", self.fluid.background_pressure)?;
         if let Some(u) = self.fluid.max_velocity {
             non_negative("fluid.max_velocity", u)?;
         }

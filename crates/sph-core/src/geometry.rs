@@ -60,7 +60,11 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         fluid.extend(points.into_iter().map(|x| (x, u, k)));
     }
 
-    let eos = LinearEos { rho0, c0: sound_speed(case, &fluid, &gravity, dx)? };
+    let eos = LinearEos {
+        rho0,
+        c0: sound_speed(case, &fluid, &gravity, dx)?,
+        background: case.fluid.background_pressure,
+    };
     let mut particles = Particles::default();
     for &(x, mut u, k) in &fluid {
         let b = &case.fluid_block[k];
@@ -80,7 +84,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
             u[1] = amplitude * a.sin() * b2.cos();
             p = -rho0 * amplitude * amplitude / 4.0 * ((2.0 * a).cos() + (2.0 * b2).cos());
         }
-        let rho = eos.density(p);
+        let rho = eos.density(p + eos.background);
         particles.push(Kind::Fluid, x, u, rho, rho * volume);
     }
 

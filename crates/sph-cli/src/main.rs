@@ -146,7 +146,7 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
     let last = output.snapshot(&sim.particles, sim.time, sim.counters.steps)?;
     summary(&sim, output, wall, e0);
     if let Err(e) = outcome {
-        eprintln!("last snapshot, at the unstable state: {}", last.display());
+        println!("last snapshot   {} (the state at which the run stopped)", last.display());
         return Err(e.into());
     }
     Ok(())

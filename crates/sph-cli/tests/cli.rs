@@ -1,0 +1,123 @@
+//! End-to-end behaviour of the `sph-cli` binary: checks, errors, output safety and
+//! the stability guard.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn cli(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sph-cli")).args(args).output().expect("sph-cli runs")
+}
+
+fn example(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name).display().to_string()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sph-cli-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// A small, fast variant of the 2D dam break written to `dir/case.toml`.
+fn small_case(dir: &Path, extra: &str) -> String {
+    std::fs::create_dir_all(dir).unwrap();
+    let text = std::fs::read_to_string(example("dam_break_2d.toml"))
+        .unwrap()
+        .replace("spacing = 0.012 ", "spacing = 0.05 ")
+        .replace("end = 1.73", "end = 0.05")
+        .replace("output_interval = 0.05", "output_interval = 0.02")
+        + extra;
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn every_example_passes_check() {
+    for name in ["dam_break_2d", "dam_break_martin_moyce_2d", "dam_break_3d", "hydrostatic_2d", "taylor_green_2d"] {
+        let out = cli(&["check", &example(&format!("{name}.toml"))]);
+        assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+}
+
+#[test]
+fn bad_input_gives_one_clear_line_and_no_panic() {
+    let dir = scratch("bad");
+    for (edit, expected) in [
+        ("spacing = 0.05 ", "particles.spacing = -0.05: expected a positive number"),
+        ("alpha = 0.02", "scheme.alphaa"),
+        ("hi = [1.2, 0.6]", "fluid_block[0].hi"),
+    ] {
+        let case = small_case(&dir, "");
+        let text = std::fs::read_to_string(&case).unwrap();
+        let broken = match expected {
+            e if e.starts_with("particles") => text.replace(edit, "spacing = -0.05 "),
+            e if e.starts_with("scheme") => text.replace(edit, "alphaa = 0.02"),
+            _ => text.replace(edit, "hi = [1.2, -0.6]"),
+        };
+        std::fs::write(&case, broken).unwrap();
+        let out = cli(&["check", &case]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.lines().next().unwrap().contains(expected), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn fluid_overlapping_a_wall_is_refused() {
+    let dir = scratch("overlap");
+    let case = small_case(&dir, "\n[[wall]]\nlo = [0.5, 0.0]\nhi = [0.7, 0.3]\n");
+    let out = cli(&["check", &case]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(err.starts_with("error: fluid_block = a fluid particle at"), "{err}");
+}
+
+#[test]
+fn run_writes_snapshots_and_series_and_never_overwrites() {
+    let dir = scratch("run");
+    let case = small_case(&dir, "");
+    let out_dir = dir.join("out");
+    let out = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(summary.contains("particle-steps/s"), "{summary}");
+    for f in ["particles.xmf", "particles_000000.h5", "timeseries.csv", "case.toml"] {
+        assert!(out_dir.join(f).is_file(), "{f} missing");
+    }
+    let xmf = std::fs::read_to_string(out_dir.join("particles.xmf")).unwrap();
+    let snapshots = std::fs::read_dir(&out_dir)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "h5"))
+        .count();
+    assert_eq!(xmf.matches("<Time ").count(), snapshots, "every snapshot is indexed");
+    assert!(snapshots >= 3);
+    // A second run into the same folder is refused and leaves it untouched.
+    let before = std::fs::read(out_dir.join("timeseries.csv")).unwrap();
+    let again = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"]);
+    assert_eq!(again.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
+    assert_eq!(std::fs::read(out_dir.join("timeseries.csv")).unwrap(), before);
+    let forced = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet", "--force"]);
+    assert!(forced.status.success());
+}
+
+#[test]
+fn a_hopeless_case_stops_with_a_message_and_a_final_snapshot() {
+    // c0 far too small: the column collapses into a compressible heap.
+    let dir = scratch("unstable");
+    let case = small_case(&dir, "");
+    let text = std::fs::read_to_string(&case).unwrap().replace(
+        "gravity = [0.0, -9.81]",
+        "gravity = [0.0, -9.81]\nsound_speed = 0.5",
+    );
+    std::fs::write(&case, text.replace("end = 0.05", "end = 2.0")).unwrap();
+    let out_dir = dir.join("out");
+    let out = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(err.starts_with("error: unstable at t = "), "{err}");
+    assert!(err.contains("particle"), "{err}");
+    assert!(out_dir.join("particles_000001.h5").is_file() || out_dir.join("particles.xmf").is_file());
+}

@@ -6,12 +6,16 @@ use std::path::{Path, PathBuf};
 
 /// Path of a file under `examples/`.
 pub fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(name)
 }
 
 /// Path of a reference data file under `../shared/refdata/`.
 pub fn refdata(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/refdata").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/refdata")
+        .join(name)
 }
 
 /// Loads an example case after applying `overrides`, TOML snippets of the form
@@ -21,7 +25,9 @@ pub fn example_case(name: &str, overrides: &[&str]) -> Case {
     let mut table: toml::Table = text.parse().expect("example case is valid TOML");
     for o in overrides {
         let (path, value) = o.split_once('=').expect("override is key = value");
-        let value: toml::Table = format!("v = {}", value.trim()).parse().expect("override value parses");
+        let value: toml::Table = format!("v = {}", value.trim())
+            .parse()
+            .expect("override value parses");
         let keys: Vec<&str> = path.trim().split('.').collect();
         let mut t = &mut table;
         for k in &keys[..keys.len() - 1] {
@@ -39,9 +45,22 @@ pub fn example_case(name: &str, overrides: &[&str]) -> Case {
 /// Reads a CSV file whose comment lines start with `#`; returns the header and rows.
 pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty());
-    let header = lines.next().expect("header").split(',').map(|s| s.trim().to_string()).collect();
-    let rows = lines.map(|l| l.split(',').map(|v| v.trim().parse().expect("number")).collect()).collect();
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
+    let header = lines
+        .next()
+        .expect("header")
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.trim().parse().expect("number"))
+                .collect()
+        })
+        .collect();
     (header, rows)
 }
 

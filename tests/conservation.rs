@@ -79,21 +79,31 @@ fn mass_is_exact_and_diffusion_moves_no_mass() {
             scale += (v * rates.drho_diff[i]).abs();
         }
         assert!(scale > 0.0, "{diffusion}: the diffusive term is active");
-        assert!(sum.abs() < 1e-12 * scale, "{diffusion}: Σ V D = {sum:e} against {scale:e}");
+        assert!(
+            sum.abs() < 1e-12 * scale,
+            "{diffusion}: Σ V D = {sum:e} against {scale:e}"
+        );
     }
 }
 
 #[test]
 fn linear_momentum_is_conserved_in_a_periodic_box() {
     for integrator in ["rk4", "symplectic"] {
-        let mut sim = patch(true, true, &format!("integrator = \"{integrator}\"\nalpha = 0.05"));
+        let mut sim = patch(
+            true,
+            true,
+            &format!("integrator = \"{integrator}\"\nalpha = 0.05"),
+        );
         let (p0, _, scale) = momentum(&sim);
         for _ in 0..40 {
             sim.step().unwrap();
         }
         let (p1, _, _) = momentum(&sim);
         let drift = (p1 - p0).norm() / scale;
-        assert!(drift < 1e-13, "{integrator}: relative momentum drift {drift:e}");
+        assert!(
+            drift < 1e-13,
+            "{integrator}: relative momentum drift {drift:e}"
+        );
     }
 }
 
@@ -109,14 +119,20 @@ fn angular_momentum_is_conserved_by_the_pair_terms() {
         torque += p.mass[i] * (x[0] * a[1] - x[1] * a[0]);
         scale += p.mass[i] * x.norm() * a.norm();
     }
-    assert!(torque.abs() < 1e-13 * scale, "net torque {torque:e} against {scale:e}");
+    assert!(
+        torque.abs() < 1e-13 * scale,
+        "net torque {torque:e} against {scale:e}"
+    );
     // Over a run RK4 leaves an O(Δt⁴) error only.
     let (_, l0, _) = momentum(&sim);
     for _ in 0..40 {
         sim.step().unwrap();
     }
     let (_, l1, _) = momentum(&sim);
-    assert!(((l1 - l0) / l0).abs() < 1e-7, "angular momentum {l0} → {l1}");
+    assert!(
+        ((l1 - l0) / l0).abs() < 1e-7,
+        "angular momentum {l0} → {l1}"
+    );
 }
 
 #[test]
@@ -130,7 +146,10 @@ fn energy_is_conserved_without_viscosity_and_diffusion() {
     }
     let e1 = sim.energies().total();
     let drift = ((e1 - e0) / e0).abs();
-    println!("RK4, K = 0, δ = 0: E {e0:.6e} → {e1:.6e}, relative drift {drift:.2e} at t = {:.3} s", sim.time);
+    println!(
+        "RK4, K = 0, δ = 0: E {e0:.6e} → {e1:.6e}, relative drift {drift:.2e} at t = {:.3} s",
+        sim.time
+    );
     assert!(drift < 1e-4, "relative energy drift {drift:e}");
 }
 
@@ -140,10 +159,18 @@ fn energy_budget_closes_with_viscosity_and_diffusion() {
     let text = std::fs::read_to_string(deltasph_suite::example("dam_break_2d.toml")).unwrap();
     let mut table: toml::Table = text.parse().unwrap();
     let set = |t: &mut toml::Table, section: &str, key: &str, v: toml::Value| {
-        t.get_mut(section).and_then(|s| s.as_table_mut()).unwrap().insert(key.into(), v);
+        t.get_mut(section)
+            .and_then(|s| s.as_table_mut())
+            .unwrap()
+            .insert(key.into(), v);
     };
     set(&mut table, "particles", "spacing", toml::Value::Float(0.04));
-    set(&mut table, "diagnostics", "energy_budget", toml::Value::Boolean(true));
+    set(
+        &mut table,
+        "diagnostics",
+        "energy_budget",
+        toml::Value::Boolean(true),
+    );
     let mut sim = Simulation::<2>::new(Case::from_table(table).unwrap()).unwrap();
     let e0 = sim.energies().total();
     while sim.time < 0.5 {
@@ -153,8 +180,20 @@ fn energy_budget_closes_with_viscosity_and_diffusion() {
     let e1 = sim.energies().total();
     let lost = e0 - e1;
     let residual = (e1 - budget.dissipated - e0).abs();
-    println!("E {e0:.4} → {e1:.4}, ∫P dt = {:.4}, residual {residual:.2e}", budget.dissipated);
-    assert!(budget.last.viscous <= 0.0, "viscous power must not be positive");
-    assert!(lost > 0.1, "the flow must dissipate something for the test to mean anything");
-    assert!(residual < 0.02 * lost, "budget residual {residual:e} against a loss of {lost:e}");
+    println!(
+        "E {e0:.4} → {e1:.4}, ∫P dt = {:.4}, residual {residual:.2e}",
+        budget.dissipated
+    );
+    assert!(
+        budget.last.viscous <= 0.0,
+        "viscous power must not be positive"
+    );
+    assert!(
+        lost > 0.1,
+        "the flow must dissipate something for the test to mean anything"
+    );
+    assert!(
+        residual < 0.02 * lost,
+        "budget residual {residual:e} against a loss of {lost:e}"
+    );
 }

@@ -19,7 +19,10 @@ fn interp(xy: &[(f64, f64)], x: f64) -> Option<f64> {
 fn martin_moyce_surge_front_within_experimental_scatter() {
     let a: f64 = 0.1;
     let g = 9.81;
-    let case = example_case("dam_break_martin_moyce_2d.toml", &["particles.spacing = 0.004"]);
+    let case = example_case(
+        "dam_break_martin_moyce_2d.toml",
+        &["particles.spacing = 0.004"],
+    );
     let mut sim = Simulation::<2>::new(case).unwrap();
     let scale = (2.0 * g / a).sqrt();
     let mut front = vec![(0.0, 1.0)];
@@ -31,8 +34,14 @@ fn martin_moyce_surge_front_within_experimental_scatter() {
     let (_, mm) = read_csv(&refdata("dambreak2d_martin_moyce_1952_surge_front.csv"));
     let (_, ko) = read_csv(&refdata("dambreak2d_koshizuka_oka_1996_surge_front.csv"));
     let series: Vec<Vec<(f64, f64)>> = vec![
-        mm.iter().filter(|r| r[0] == 1.125).map(|r| (r[1], r[2])).collect(),
-        mm.iter().filter(|r| r[0] == 2.25).map(|r| (r[1], r[2])).collect(),
+        mm.iter()
+            .filter(|r| r[0] == 1.125)
+            .map(|r| (r[1], r[2]))
+            .collect(),
+        mm.iter()
+            .filter(|r| r[0] == 2.25)
+            .map(|r| (r[1], r[2]))
+            .collect(),
         ko.iter().map(|r| (r[0], r[1])).collect(),
     ];
     // The experiments' time origin is uncertain by the release of the column (the
@@ -45,20 +54,34 @@ fn martin_moyce_surge_front_within_experimental_scatter() {
         v.iter().sum::<f64>() / v.len() as f64
     };
     let misfit = |tau: f64| -> f64 {
-        times.iter().map(|&t| (interp(&front, t - tau).unwrap() - mean_exp(t)).powi(2)).sum()
+        times
+            .iter()
+            .map(|&t| (interp(&front, t - tau).unwrap() - mean_exp(t)).powi(2))
+            .sum()
     };
-    let tau = (0..=60).map(|k| k as f64 * 0.01).min_by(|a, b| misfit(*a).total_cmp(&misfit(*b))).unwrap();
+    let tau = (0..=60)
+        .map(|k| k as f64 * 0.01)
+        .min_by(|a, b| misfit(*a).total_cmp(&misfit(*b)))
+        .unwrap();
     println!("fitted time-origin shift τ = {tau:.2}");
-    assert!(tau < 0.3, "the front runs ahead of the experiments by more than a plausible release time");
+    assert!(
+        tau < 0.3,
+        "the front runs ahead of the experiments by more than a plausible release time"
+    );
     for t in times {
         let sph = interp(&front, t - tau).unwrap();
         let exp: Vec<f64> = series.iter().filter_map(|s| interp(s, t)).collect();
-        let (lo, hi) = exp.iter().fold((f64::MAX, f64::MIN), |(l, h), &z| (l.min(z), h.max(z)));
+        let (lo, hi) = exp
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &z| (l.min(z), h.max(z)));
         // The scatter band, widened by the few-percent digitisation error (grade C)
         // and one particle spacing of front resolution (Δx/a = 0.04).
         let (lo, hi) = (lo * 0.95 - 0.04, hi * 1.05 + 0.04);
         println!("T = {t}: SPH Z = {sph:.3}, experiments {exp:.3?}");
-        assert!(lo <= sph && sph <= hi, "T = {t}: Z = {sph:.3} outside [{lo:.3}, {hi:.3}]");
+        assert!(
+            lo <= sph && sph <= hi,
+            "T = {t}: Z = {sph:.3} outside [{lo:.3}, {hi:.3}]"
+        );
     }
 }
 
@@ -82,7 +105,10 @@ fn benchmark_front_reaches_the_wall_when_p1_rises() {
             rise = Some(t);
         }
     }
-    let (arrival, rise) = (arrival.expect("front reaches the wall"), rise.expect("P1 rises"));
+    let (arrival, rise) = (
+        arrival.expect("front reaches the wall"),
+        rise.expect("P1 rises"),
+    );
     println!("front at the wall t* = {arrival:.3}, P1 rises at t* = {rise:.3}");
     assert!((2.3..=2.55).contains(&arrival), "arrival t* = {arrival}");
     assert!((2.35..=2.65).contains(&rise), "P1 rise t* = {rise}");

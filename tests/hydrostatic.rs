@@ -42,7 +42,11 @@ fn run(diffusion: &str, dx: f64) -> Errors {
         }
         umax = umax.max(p.u[i].norm());
     }
-    Errors { all: (all / n_all as f64).sqrt(), top: (top / n_top as f64).sqrt(), max_speed: umax }
+    Errors {
+        all: (all / n_all as f64).sqrt(),
+        top: (top / n_top as f64).sqrt(),
+        max_speed: umax,
+    }
 }
 
 #[test]
@@ -59,7 +63,16 @@ fn delta_sph_keeps_the_hydrostatic_pressure_and_molteni_colagrossi_does_not() {
     assert!(delta.all < 0.03, "δ-SPH L2 error {:.4}", delta.all);
     assert!(delta.top < 0.03, "δ-SPH top-layer error {:.4}", delta.top);
     // Spurious currents stay far below the free-fall speed sqrt(2gH) = 4.4 m/s.
-    assert!(delta.max_speed < 0.05 * (2.0f64 * 9.81).sqrt(), "|u|max {:.3e}", delta.max_speed);
+    assert!(
+        delta.max_speed < 0.05 * (2.0f64 * 9.81).sqrt(),
+        "|u|max {:.3e}",
+        delta.max_speed
+    );
     // The talk's claim, measured: Molteni-Colagrossi is clearly worse near the surface.
-    assert!(mc.top > 2.0 * delta.top, "MC top {:.4} vs δ-SPH top {:.4}", mc.top, delta.top);
+    assert!(
+        mc.top > 2.0 * delta.top,
+        "MC top {:.4} vs δ-SPH top {:.4}",
+        mc.top,
+        delta.top
+    );
 }

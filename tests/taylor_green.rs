@@ -19,7 +19,10 @@ fn decay_rates(viscosity: &str, t_end: f64) -> (f64, f64) {
     let k = 2.0 * PI;
     let case = example_case(
         "taylor_green_2d.toml",
-        &["particles.spacing = 0.02", &format!("scheme.viscosity = \"{viscosity}\"")],
+        &[
+            "particles.spacing = 0.02",
+            &format!("scheme.viscosity = \"{viscosity}\""),
+        ],
     );
     let mut sim = Simulation::<2>::new(case).unwrap();
     let (mut t, mut log_e, mut log_a) = (vec![0.0], vec![sim.energies().kinetic.ln()], vec![0.0]);
@@ -52,7 +55,16 @@ fn viscous_decay_rates_match_the_analytic_solution() {
         "amplitude: total {visc_a:.4}, numerical {num_a:.4}, viscous {rate_a:.4} (exact {exact_a:.4}); \
          energy: total {visc_e:.4}, numerical {num_e:.4}, viscous {rate_e:.4} (exact {exact_e:.4})"
     );
-    assert!((rate_a / exact_a - 1.0).abs() < 0.05, "amplitude decay rate {rate_a} vs {exact_a}");
-    assert!((rate_e / exact_e - 1.0).abs() < 0.05, "energy decay rate {rate_e} vs {exact_e}");
-    assert!(num_e < 0.25 * exact_e, "numerical dissipation {num_e} against {exact_e}");
+    assert!(
+        (rate_a / exact_a - 1.0).abs() < 0.05,
+        "amplitude decay rate {rate_a} vs {exact_a}"
+    );
+    assert!(
+        (rate_e / exact_e - 1.0).abs() < 0.05,
+        "energy decay rate {rate_e} vs {exact_e}"
+    );
+    assert!(
+        num_e < 0.25 * exact_e,
+        "numerical dissipation {num_e} against {exact_e}"
+    );
 }

@@ -10,7 +10,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 #[derive(Parser)]
-#[command(name = "sph-cli", version, about = "Weakly-compressible δ-SPH solver: run and check TOML cases")]
+#[command(
+    name = "sph-cli",
+    version,
+    about = "Weakly-compressible δ-SPH solver: run and check TOML cases"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -43,14 +47,22 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { case, out, force, quiet } => run(&case, out, force, quiet),
+        Command::Run {
+            case,
+            out,
+            force,
+            quiet,
+        } => run(&case, out, force, quiet),
         Command::Check { case } => check(&case),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
-            let unstable = matches!(e.downcast_ref::<SphError>(), Some(SphError::Unstable { .. }));
+            let unstable = matches!(
+                e.downcast_ref::<SphError>(),
+                Some(SphError::Unstable { .. })
+            );
             ExitCode::from(if unstable { 3 } else { 2 })
         }
     }
@@ -104,11 +116,15 @@ fn progress_bar(quiet: bool) -> ProgressBar {
 fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: bool) -> Result<()> {
     let end = sim.case.time.end;
     let snap_every = sim.case.time.output_interval;
-    let series_every = sim.case.diagnostics.interval.unwrap_or(if snap_every > 0.0 {
-        snap_every / 10.0
-    } else {
-        end / 200.0
-    });
+    let series_every = sim
+        .case
+        .diagnostics
+        .interval
+        .unwrap_or(if snap_every > 0.0 {
+            snap_every / 10.0
+        } else {
+            end / 200.0
+        });
     let max_steps = sim.case.time.max_steps.unwrap_or(u64::MAX);
     output.start_series(&sim.series_header())?;
     let row = sim.series_values();
@@ -136,7 +152,10 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
         }
         let steps_per_s = sim.counters.steps as f64 / start.elapsed().as_secs_f64();
         bar.set_position((1000.0 * sim.time / end) as u64);
-        bar.set_message(format!("{:.4} s, {} steps, {steps_per_s:.1} steps/s", sim.time, sim.counters.steps));
+        bar.set_message(format!(
+            "{:.4} s, {} steps, {steps_per_s:.1} steps/s",
+            sim.time, sim.counters.steps
+        ));
     }
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
@@ -146,18 +165,30 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
     let last = output.snapshot(&sim.particles, sim.time, sim.counters.steps)?;
     summary(&sim, output, wall, e0);
     if let Err(e) = outcome {
-        println!("last snapshot   {} (the state at which the run stopped)", last.display());
+        println!(
+            "last snapshot   {} (the state at which the run stopped)",
+            last.display()
+        );
         return Err(e.into());
     }
     Ok(())
 }
 
-fn summary<const D: usize>(sim: &Simulation<D>, output: &Output, wall: f64, e0: sph_core::diagnostics::Energies) {
+fn summary<const D: usize>(
+    sim: &Simulation<D>,
+    output: &Output,
+    wall: f64,
+    e0: sph_core::diagnostics::Energies,
+) {
     let n = sim.n_fluid();
     let c = sim.counters;
     let e1 = sim.energies();
     println!("case            {} ({}D)", sim.case.name, D);
-    println!("particles       {} fluid, {} wall", n, sim.particles.len() - n);
+    println!(
+        "particles       {} fluid, {} wall",
+        n,
+        sim.particles.len() - n
+    );
     println!(
         "scheme          {:?} diffusion (δ = {}), {:?} viscosity, {:?}, CFL {}",
         sim.case.scheme.diffusion,
@@ -167,13 +198,20 @@ fn summary<const D: usize>(sim: &Simulation<D>, output: &Output, wall: f64, e0: 
         sim.case.scheme.cfl()
     );
     println!("sound speed     c0 = {:.4} m/s", sim.physics().eos.c0);
-    println!("simulated       t = {:.6} s in {} steps (last Δt = {:.3e} s)", sim.time, c.steps, sim.dt);
+    println!(
+        "simulated       t = {:.6} s in {} steps (last Δt = {:.3e} s)",
+        sim.time, c.steps, sim.dt
+    );
     println!("wall time       {wall:.2} s");
     println!(
         "throughput      {:.3e} particle-steps/s, {:.3e} particle-evaluations/s, {} list builds",
         n as f64 * c.steps as f64 / wall,
         n as f64 * c.evaluations as f64 / wall,
         c.rebuilds
+    );
+    println!(
+        "neighbours      {:.1} listed per particle (fluid and wall, incl. skin)",
+        sim.mean_neighbours()
     );
     println!("max |Δρ/ρ0|     {:.3e}", sim.max_density_variation());
     println!(
@@ -185,5 +223,8 @@ fn summary<const D: usize>(sim: &Simulation<D>, output: &Output, wall: f64, e0: 
     if let Some(b) = sim.budget {
         println!("                ∫(P_V+P_D)dt = {:+.3e} J", b.dissipated);
     }
-    println!("output          {} (open particles.xmf in ParaView)", output.dir().display());
+    println!(
+        "output          {} (open particles.xmf in ParaView)",
+        output.dir().display()
+    );
 }

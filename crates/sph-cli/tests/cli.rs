@@ -5,11 +5,18 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn cli(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sph-cli")).args(args).output().expect("sph-cli runs")
+    Command::new(env!("CARGO_BIN_EXE_sph-cli"))
+        .args(args)
+        .output()
+        .expect("sph-cli runs")
 }
 
 fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name).display().to_string()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+        .display()
+        .to_string()
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -34,9 +41,19 @@ fn small_case(dir: &Path, extra: &str) -> String {
 
 #[test]
 fn every_example_passes_check() {
-    for name in ["dam_break_2d", "dam_break_martin_moyce_2d", "dam_break_3d", "hydrostatic_2d", "taylor_green_2d"] {
+    for name in [
+        "dam_break_2d",
+        "dam_break_martin_moyce_2d",
+        "dam_break_3d",
+        "hydrostatic_2d",
+        "taylor_green_2d",
+    ] {
         let out = cli(&["check", &example(&format!("{name}.toml"))]);
-        assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
 }
 
@@ -44,7 +61,10 @@ fn every_example_passes_check() {
 fn bad_input_gives_one_clear_line_and_no_panic() {
     let dir = scratch("bad");
     for (edit, expected) in [
-        ("spacing = 0.05 ", "particles.spacing = -0.05: expected a positive number"),
+        (
+            "spacing = 0.05 ",
+            "particles.spacing = -0.05: expected a positive number",
+        ),
         ("alpha = 0.02", "scheme.alphaa"),
         ("hi = [1.2, 0.6]", "fluid_block[0].hi"),
     ] {
@@ -71,7 +91,10 @@ fn fluid_overlapping_a_wall_is_refused() {
     let out = cli(&["check", &case]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2));
-    assert!(err.starts_with("error: fluid_block = a fluid particle at"), "{err}");
+    assert!(
+        err.starts_with("error: fluid_block = a fluid particle at"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -80,26 +103,55 @@ fn run_writes_snapshots_and_series_and_never_overwrites() {
     let case = small_case(&dir, "");
     let out_dir = dir.join("out");
     let out = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let summary = String::from_utf8_lossy(&out.stdout);
     assert!(summary.contains("particle-steps/s"), "{summary}");
-    for f in ["particles.xmf", "particles_000000.h5", "timeseries.csv", "case.toml"] {
+    for f in [
+        "particles.xmf",
+        "particles_000000.h5",
+        "timeseries.csv",
+        "case.toml",
+    ] {
         assert!(out_dir.join(f).is_file(), "{f} missing");
     }
     let xmf = std::fs::read_to_string(out_dir.join("particles.xmf")).unwrap();
     let snapshots = std::fs::read_dir(&out_dir)
         .unwrap()
-        .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "h5"))
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "h5")
+        })
         .count();
-    assert_eq!(xmf.matches("<Time ").count(), snapshots, "every snapshot is indexed");
+    assert_eq!(
+        xmf.matches("<Time ").count(),
+        snapshots,
+        "every snapshot is indexed"
+    );
     assert!(snapshots >= 3);
     // A second run into the same folder is refused and leaves it untouched.
     let before = std::fs::read(out_dir.join("timeseries.csv")).unwrap();
     let again = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"]);
     assert_eq!(again.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
-    assert_eq!(std::fs::read(out_dir.join("timeseries.csv")).unwrap(), before);
-    let forced = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet", "--force"]);
+    assert_eq!(
+        std::fs::read(out_dir.join("timeseries.csv")).unwrap(),
+        before
+    );
+    let forced = cli(&[
+        "run",
+        &case,
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--quiet",
+        "--force",
+    ]);
     assert!(forced.status.success());
 }
 
@@ -119,5 +171,7 @@ fn a_hopeless_case_stops_with_a_message_and_a_final_snapshot() {
     assert_eq!(out.status.code(), Some(3), "{err}");
     assert!(err.starts_with("error: unstable at t = "), "{err}");
     assert!(err.contains("particle"), "{err}");
-    assert!(out_dir.join("particles_000001.h5").is_file() || out_dir.join("particles.xmf").is_file());
+    assert!(
+        out_dir.join("particles_000001.h5").is_file() || out_dir.join("particles.xmf").is_file()
+    );
 }

@@ -29,7 +29,8 @@ pub fn extrapolate_walls<const D: usize, K: Kernel>(
         .filter(|&i| state.kind[i] == Kind::Wall)
         .map(|i| {
             let xw = state.x[i];
-            let (mut sw, mut sp, mut srx, mut su) = (0.0, 0.0, Vector::<D>::zeros(), Vector::<D>::zeros());
+            let (mut sw, mut sp, mut srx, mut su) =
+                (0.0, 0.0, Vector::<D>::zeros(), Vector::<D>::zeros());
             for &f in list.of(i) {
                 let f = f as usize;
                 let x_wf = domain.separation(&xw, &state.x[f]);

@@ -275,7 +275,9 @@ pub struct StabilityConfig {
 
 impl Default for StabilityConfig {
     fn default() -> Self {
-        Self { max_density_variation: default_max_density_variation() }
+        Self {
+            max_density_variation: default_max_density_variation(),
+        }
     }
 }
 
@@ -311,9 +313,10 @@ impl Case {
             message: e.to_string(),
         })?;
         Self::from_toml_str(&text).map_err(|e| match e {
-            SphError::CaseFile { message, .. } => {
-                SphError::CaseFile { path: path.display().to_string(), message }
-            }
+            SphError::CaseFile { message, .. } => SphError::CaseFile {
+                path: path.display().to_string(),
+                message,
+            },
             other => other,
         })
     }
@@ -322,8 +325,14 @@ impl Case {
     pub fn from_toml_str(text: &str) -> Result<Self> {
         let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
             let first = e.message().lines().next().unwrap_or("").to_string();
-            let at = e.span().map(|s| line_col(text, s.start)).unwrap_or_default();
-            SphError::CaseFile { path: "<case>".into(), message: format!("TOML syntax{at}: {first}") }
+            let at = e
+                .span()
+                .map(|s| line_col(text, s.start))
+                .unwrap_or_default();
+            SphError::CaseFile {
+                path: "<case>".into(),
+                message: format!("TOML syntax{at}: {first}"),
+            }
         })?;
         Self::from_table(table)
     }
@@ -333,7 +342,9 @@ impl Case {
         let value = toml::Value::Table(table);
         let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
             let key = e.path().to_string();
-            let found = lookup(&value, &key).map(|v| v.to_string()).unwrap_or_else(|| "(missing)".into());
+            let found = lookup(&value, &key)
+                .map(|v| v.to_string())
+                .unwrap_or_else(|| "(missing)".into());
             SphError::invalid(key, found, e.inner().to_string())
         })?;
         case.validate()?;
@@ -349,7 +360,11 @@ impl Case {
         positive("particles.spacing", self.particles.spacing)?;
         let ratio = self.particles.h_over_dx;
         if !(1.0..=3.0).contains(&ratio) {
-            return Err(SphError::invalid("particles.h_over_dx", ratio, "a value in [1, 3]"));
+            return Err(SphError::invalid(
+                "particles.h_over_dx",
+                ratio,
+                "a value in [1, 3]",
+            ));
         }
         positive("fluid.density", self.fluid.density)?;
         if let Some(g) = &self.fluid.gravity {
@@ -364,7 +379,11 @@ impl Case {
             non_negative("fluid.max_velocity", u)?;
         }
         if self.fluid_block.is_empty() {
-            return Err(SphError::invalid("fluid_block", "[]", "at least one [[fluid_block]]"));
+            return Err(SphError::invalid(
+                "fluid_block",
+                "[]",
+                "at least one [[fluid_block]]",
+            ));
         }
         for (k, b) in self.fluid_block.iter().enumerate() {
             check_box(&format!("fluid_block[{k}]"), &b.lo, &b.hi, d)?;
@@ -385,7 +404,11 @@ impl Case {
         for (k, t) in self.tank.iter().enumerate() {
             check_box(&format!("tank[{k}]"), &t.lo, &t.hi, d)?;
             if t.layers == 0 {
-                return Err(SphError::invalid(format!("tank[{k}].layers"), 0, "at least 1"));
+                return Err(SphError::invalid(
+                    format!("tank[{k}].layers"),
+                    0,
+                    "at least 1",
+                ));
             }
             for face in t.open.iter().flatten() {
                 if face_axis(face, d).is_none() {
@@ -408,9 +431,17 @@ impl Case {
                 ));
             }
         }
-        if let Some(InitialField::TaylorGreen { amplitude, wavelength }) = &self.initial {
+        if let Some(InitialField::TaylorGreen {
+            amplitude,
+            wavelength,
+        }) = &self.initial
+        {
             if d != 2 {
-                return Err(SphError::invalid("initial.type", "\"taylor_green\"", "dimension = 2"));
+                return Err(SphError::invalid(
+                    "initial.type",
+                    "\"taylor_green\"",
+                    "dimension = 2",
+                ));
             }
             finite("initial.amplitude", *amplitude)?;
             positive("initial.wavelength", *wavelength)?;
@@ -418,7 +449,10 @@ impl Case {
         self.validate_scheme()?;
         positive("time.end", self.time.end)?;
         non_negative("time.output_interval", self.time.output_interval)?;
-        positive("stability.max_density_variation", self.stability.max_density_variation)?;
+        positive(
+            "stability.max_density_variation",
+            self.stability.max_density_variation,
+        )?;
         if let Some(i) = self.diagnostics.interval {
             positive("diagnostics.interval", i)?;
         }
@@ -440,7 +474,11 @@ impl Case {
     fn validate_scheme(&self) -> Result<()> {
         let s = &self.scheme;
         if !(0.0..=1.0).contains(&s.delta) {
-            return Err(SphError::invalid("scheme.delta", s.delta, "a value in [0, 1]"));
+            return Err(SphError::invalid(
+                "scheme.delta",
+                s.delta,
+                "a value in [0, 1]",
+            ));
         }
         match s.viscosity {
             ViscosityChoice::Artificial => non_negative("scheme.alpha", s.alpha())?,
@@ -458,7 +496,11 @@ impl Case {
         }
         let cfl = s.cfl();
         if !(cfl > 0.0 && cfl <= 3.0) {
-            return Err(SphError::invalid("scheme.cfl", cfl, "a Courant number in (0, 3]"));
+            return Err(SphError::invalid(
+                "scheme.cfl",
+                cfl,
+                "a Courant number in (0, 3]",
+            ));
         }
         positive("scheme.viscous_cfl", s.viscous_cfl)?;
         positive("scheme.force_cfl", s.force_cfl)
@@ -476,7 +518,10 @@ impl Case {
 
     /// Gravity vector as a slice of `dimension` components.
     pub fn gravity(&self) -> Vec<f64> {
-        self.fluid.gravity.clone().unwrap_or_else(|| vec![0.0; self.dimension])
+        self.fluid
+            .gravity
+            .clone()
+            .unwrap_or_else(|| vec![0.0; self.dimension])
     }
 }
 
@@ -523,10 +568,18 @@ fn finite(key: &str, v: f64) -> Result<()> {
 
 fn components(key: &str, v: &[f64], d: usize) -> Result<()> {
     if v.len() != d {
-        return Err(SphError::invalid(key, format!("{v:?}"), format!("{d} components (dimension = {d})")));
+        return Err(SphError::invalid(
+            key,
+            format!("{v:?}"),
+            format!("{d} components (dimension = {d})"),
+        ));
     }
     if v.iter().any(|c| !c.is_finite()) {
-        return Err(SphError::invalid(key, format!("{v:?}"), "finite components"));
+        return Err(SphError::invalid(
+            key,
+            format!("{v:?}"),
+            "finite components",
+        ));
     }
     Ok(())
 }
@@ -549,7 +602,10 @@ fn lookup<'a>(v: &'a toml::Value, path: &str) -> Option<&'a toml::Value> {
     let mut cur = v;
     for part in path.split('.') {
         let (name, index) = match part.find('[') {
-            Some(b) => (&part[..b], part[b + 1..part.len() - 1].parse::<usize>().ok()),
+            Some(b) => (
+                &part[..b],
+                part[b + 1..part.len() - 1].parse::<usize>().ok(),
+            ),
             None => (part, None),
         };
         if !name.is_empty() {
@@ -605,7 +661,10 @@ mod tests {
     #[test]
     fn unknown_key_is_named() {
         let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nspacingg = 2"));
-        assert!(e.starts_with("particles.spacingg") || e.contains("spacingg"), "{e}");
+        assert!(
+            e.starts_with("particles.spacingg") || e.contains("spacingg"),
+            "{e}"
+        );
         assert!(e.contains("unknown field"), "{e}");
         assert_eq!(e.lines().count(), 1, "{e}");
     }
@@ -631,7 +690,10 @@ mod tests {
     #[test]
     fn wrong_component_count() {
         let e = error_of(&MINIMAL.replace("gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]"));
-        assert!(e.starts_with("fluid.gravity = [0.0, 0.0, -9.81]: expected 2 components"), "{e}");
+        assert!(
+            e.starts_with("fluid.gravity = [0.0, 0.0, -9.81]: expected 2 components"),
+            "{e}"
+        );
     }
 
     #[test]

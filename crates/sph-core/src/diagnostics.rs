@@ -103,18 +103,26 @@ pub fn surge_front<const D: usize>(p: &Particles<D>, axis: usize) -> f64 {
 
 /// The first fluid particle that is not finite or whose density left `[ρ0(1-l), ρ0(1+l)]`,
 /// with a description of what went wrong.
-pub fn find_instability<const D: usize>(p: &Particles<D>, rho0: f64, limit: f64) -> Option<(usize, String)> {
+pub fn find_instability<const D: usize>(
+    p: &Particles<D>,
+    rho0: f64,
+    limit: f64,
+) -> Option<(usize, String)> {
     (0..p.len())
         .into_par_iter()
         .filter(|&i| p.kind[i] == Kind::Fluid)
         .find_map_first(|i| {
-            let finite = p.x[i].iter().chain(p.u[i].iter()).all(|v| v.is_finite()) && p.rho[i].is_finite();
+            let finite =
+                p.x[i].iter().chain(p.u[i].iter()).all(|v| v.is_finite()) && p.rho[i].is_finite();
             if !finite {
                 return Some((i, "non-finite position, velocity or density".to_string()));
             }
             let var = p.rho[i] / rho0 - 1.0;
             (var.abs() > limit).then(|| {
-                (i, format!("density variation ρ/ρ0 - 1 = {var:.4} beyond the limit ±{limit}"))
+                (
+                    i,
+                    format!("density variation ρ/ρ0 - 1 = {var:.4} beyond the limit ±{limit}"),
+                )
             })
         })
 }

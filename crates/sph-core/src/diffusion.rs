@@ -167,7 +167,10 @@ mod tests {
             mc.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &x, r2, r2 * 1.1, f),
             -mc.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &-x, r2, r2 * 1.1, f),
         );
-        let fe = Ferrari { delta: 0.1, h: 0.02 };
+        let fe = Ferrari {
+            delta: 0.1,
+            h: 0.02,
+        };
         check(
             fe.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &x, r2, r2, f),
             -fe.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &-x, r2, r2, f),
@@ -193,6 +196,10 @@ mod tests {
         let v = ds.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &x_ij, r2, r2, -3.0);
         assert!(v.abs() < 1e-10, "{v}");
         let mc = MolteniColagrossi { delta: 0.1 };
-        assert!(mc.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &x_ij, r2, r2, -3.0).abs() > 0.01);
+        assert!(
+            mc.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &x_ij, r2, r2, -3.0)
+                .abs()
+                > 0.01
+        );
     }
 }

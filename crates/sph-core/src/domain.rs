@@ -18,7 +18,11 @@ pub struct Domain<const D: usize> {
 impl<const D: usize> Domain<D> {
     /// A domain with no periodic direction.
     pub fn open() -> Self {
-        Self { lo: Vector::zeros(), period: Vector::zeros(), inv_period: Vector::zeros() }
+        Self {
+            lo: Vector::zeros(),
+            period: Vector::zeros(),
+            inv_period: Vector::zeros(),
+        }
     }
 
     /// A box `[lo, hi]` periodic along the directions flagged in `periodic`.
@@ -31,7 +35,11 @@ impl<const D: usize> Domain<D> {
                 inv_period[d] = 1.0 / period[d];
             }
         }
-        Self { lo, period, inv_period }
+        Self {
+            lo,
+            period,
+            inv_period,
+        }
     }
 
     pub fn is_periodic(&self, d: usize) -> bool {

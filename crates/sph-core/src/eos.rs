@@ -45,7 +45,11 @@ mod tests {
 
     #[test]
     fn internal_energy_is_the_integral_of_p_over_rho_squared() {
-        let eos = LinearEos { rho0: 1000.0, c0: 30.0, background: 2500.0 };
+        let eos = LinearEos {
+            rho0: 1000.0,
+            c0: 30.0,
+            background: 2500.0,
+        };
         for rho in [990.0, 1000.0, 1012.0] {
             let n = 20_000;
             let ds = (rho - eos.rho0) / n as f64;

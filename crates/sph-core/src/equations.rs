@@ -43,7 +43,11 @@ impl<const D: usize> Rates<D> {
 
     /// Largest acceleration magnitude.
     pub fn max_acceleration(&self) -> f64 {
-        self.du.par_iter().map(|a| a.norm_squared()).reduce(|| 0.0, f64::max).sqrt()
+        self.du
+            .par_iter()
+            .map(|a| a.norm_squared())
+            .reduce(|| 0.0, f64::max)
+            .sqrt()
     }
 }
 
@@ -89,8 +93,12 @@ pub trait Model<const D: usize>: Send + Sync {
         with_diffusion: bool,
     );
     /// Viscous and diffusive powers at the state of the last `evaluate` call.
-    fn powers(&self, particles: &Particles<D>, list: &NeighbourList<D>, domain: &Domain<D>)
-        -> Powers;
+    fn powers(
+        &self,
+        particles: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) -> Powers;
     /// Kernel value `W(r)`.
     fn w(&self, r: f64) -> f64;
     /// Kernel support radius R.
@@ -153,8 +161,17 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         let ui = p.u[i];
         let (pi, rho_i) = (p.p[i], p.rho[i]);
         let zero = Vector::<D>::zeros();
-        let grad_i = if DIFF && Df::NEEDS_GRADIENT { self.grad[i] } else { zero };
-        let mut s = Sums { divergence: 0.0, pressure: zero, viscous: zero, diffusion: 0.0 };
+        let grad_i = if DIFF && Df::NEEDS_GRADIENT {
+            self.grad[i]
+        } else {
+            zero
+        };
+        let mut s = Sums {
+            divergence: 0.0,
+            pressure: zero,
+            viscous: zero,
+            diffusion: 0.0,
+        };
         for &j in list.of(i) {
             let j = j as usize;
             let x_ij = domain.separation(&xi, &p.x[j]);
@@ -176,7 +193,11 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
                 s.viscous += grad_w * (pi_ij * weight);
             }
             if DIFF && Df::ACTIVE {
-                let grad_j = if Df::NEEDS_GRADIENT { self.grad[j] } else { zero };
+                let grad_j = if Df::NEEDS_GRADIENT {
+                    self.grad[j]
+                } else {
+                    zero
+                };
                 let psi = self.diffusion.psi_dot_grad(
                     rho_i,
                     p.rho[j],
@@ -232,7 +253,13 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
     }
 
     /// `Σ_w p_w ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
-    fn wall_force(&self, i: usize, p: &Particles<D>, list: &NeighbourList<D>, domain: &Domain<D>) -> Vector<D> {
+    fn wall_force(
+        &self,
+        i: usize,
+        p: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) -> Vector<D> {
         list.of(i)
             .iter()
             .map(|&j| j as usize)
@@ -308,7 +335,8 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
                 Powers {
                     viscous: m * particles.u[i].dot(&s.viscous) * k / rho,
                     diffusive: m * p / (rho * rho) * scale * s.diffusion,
-                    wall: -m / rho * particles.u[i].dot(&self.wall_force(i, particles, list, domain)),
+                    wall: -m / rho
+                        * particles.u[i].dot(&self.wall_force(i, particles, list, domain)),
                 }
             })
             .reduce(Powers::default, |a, b| Powers {

@@ -10,22 +10,43 @@ pub enum SphError {
     CaseFile { path: String, message: String },
     /// A key holds a value the solver cannot accept.
     #[error("{key} = {value}: expected {expected}")]
-    InvalidValue { key: String, value: String, expected: String },
+    InvalidValue {
+        key: String,
+        value: String,
+        expected: String,
+    },
     /// The run blew up; the output written so far is kept.
     #[error("unstable at t = {time:.6} s (step {step}): {reason} at particle {particle} (x = {position})")]
-    Unstable { time: f64, step: u64, particle: u32, position: String, reason: String },
+    Unstable {
+        time: f64,
+        step: u64,
+        particle: u32,
+        position: String,
+        reason: String,
+    },
     /// Writing the output failed.
     #[error("output {path}: {message}")]
     Output { path: String, message: String },
 }
 
 impl SphError {
-    pub fn invalid(key: impl Into<String>, value: impl ToString, expected: impl Into<String>) -> Self {
-        SphError::InvalidValue { key: key.into(), value: value.to_string(), expected: expected.into() }
+    pub fn invalid(
+        key: impl Into<String>,
+        value: impl ToString,
+        expected: impl Into<String>,
+    ) -> Self {
+        SphError::InvalidValue {
+            key: key.into(),
+            value: value.to_string(),
+            expected: expected.into(),
+        }
     }
 
     pub fn output(path: impl AsRef<std::path::Path>, e: impl ToString) -> Self {
-        SphError::Output { path: path.as_ref().display().to_string(), message: e.to_string() }
+        SphError::Output {
+            path: path.as_ref().display().to_string(),
+            message: e.to_string(),
+        }
     }
 }
 

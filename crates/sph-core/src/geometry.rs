@@ -24,7 +24,9 @@ fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
 
 /// Lattice points `lo + (k + ½)Δx` filling `[lo, hi]`, with the count per axis rounded.
 fn lattice<const D: usize>(lo: &Vector<D>, hi: &Vector<D>, dx: f64) -> Vec<Vector<D>> {
-    let n: Vec<usize> = (0..D).map(|d| ((hi[d] - lo[d]) / dx).round().max(0.0) as usize).collect();
+    let n: Vec<usize> = (0..D)
+        .map(|d| ((hi[d] - lo[d]) / dx).round().max(0.0) as usize)
+        .collect();
     let total: usize = n.iter().product();
     (0..total)
         .map(|mut k| {
@@ -40,7 +42,10 @@ fn lattice<const D: usize>(lo: &Vector<D>, hi: &Vector<D>, dx: f64) -> Vec<Vecto
 
 /// Builds particles, domain, EOS and gravity for a validated case of dimension `D`.
 pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
-    assert_eq!(case.dimension, D, "case dimension and solver dimension differ");
+    assert_eq!(
+        case.dimension, D,
+        "case dimension and solver dimension differ"
+    );
     let dx = case.dx();
     let gravity: Vector<D> = vector(&case.gravity());
     let rho0 = case.fluid.density;
@@ -56,7 +61,11 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
                 format!("a box at least one spacing ({dx} m) wide along every axis"),
             ));
         }
-        let u: Vector<D> = b.velocity.as_deref().map(vector).unwrap_or_else(Vector::zeros);
+        let u: Vector<D> = b
+            .velocity
+            .as_deref()
+            .map(vector)
+            .unwrap_or_else(Vector::zeros);
         fluid.extend(points.into_iter().map(|x| (x, u, k)));
     }
 
@@ -77,7 +86,11 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
                 .fold(f64::MIN, f64::max);
             p = rho0 * (top + gravity.dot(&x));
         }
-        if let Some(InitialField::TaylorGreen { amplitude, wavelength }) = &case.initial {
+        if let Some(InitialField::TaylorGreen {
+            amplitude,
+            wavelength,
+        }) = &case.initial
+        {
             let kx = 2.0 * PI / wavelength;
             let (a, b2) = (kx * x[0], kx * x[1]);
             u[0] = -amplitude * a.cos() * b2.sin();
@@ -93,7 +106,12 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
     }
     check_overlap(&particles, dx)?;
     let domain = domain_of(case, &particles)?;
-    Ok(Setup { particles, domain, eos, gravity })
+    Ok(Setup {
+        particles,
+        domain,
+        eos,
+        gravity,
+    })
 }
 
 fn corners<const D: usize>(lo: &Vector<D>, hi: &Vector<D>) -> Vec<Vector<D>> {
@@ -124,9 +142,17 @@ fn sound_speed<const D: usize>(
     if let Some(InitialField::TaylorGreen { amplitude, .. }) = &case.initial {
         u0 = u0.max(amplitude.abs());
     }
-    let u_max = case.fluid.max_velocity.unwrap_or(u0.max((2.0 * g * height).sqrt()));
+    let u_max = case
+        .fluid
+        .max_velocity
+        .unwrap_or(u0.max((2.0 * g * height).sqrt()));
     let rho0 = case.fluid.density;
-    let c0 = LinearEos::sound_speed_rule(case.fluid.sound_speed_factor, u_max, rho0 * g * height, rho0);
+    let c0 = LinearEos::sound_speed_rule(
+        case.fluid.sound_speed_factor,
+        u_max,
+        rho0 * g * height,
+        rho0,
+    );
     if c0 > 0.0 {
         Ok(c0)
     } else {
@@ -152,13 +178,17 @@ fn wall_points<const D: usize>(case: &Case) -> Vec<Vector<D>> {
             .iter()
             .filter_map(|f| face_axis(f, D))
             .collect();
-        points.extend(lattice(&(lo - pad), &(hi + pad), dx).into_iter().filter(|x| {
-            let outside = (0..D).any(|d| x[d] < lo[d] || x[d] > hi[d]);
-            let beyond_open = open
-                .iter()
-                .any(|&(d, s)| if s > 0 { x[d] > hi[d] } else { x[d] < lo[d] });
-            outside && !beyond_open
-        }));
+        points.extend(
+            lattice(&(lo - pad), &(hi + pad), dx)
+                .into_iter()
+                .filter(|x| {
+                    let outside = (0..D).any(|d| x[d] < lo[d] || x[d] > hi[d]);
+                    let beyond_open =
+                        open.iter()
+                            .any(|&(d, s)| if s > 0 { x[d] > hi[d] } else { x[d] < lo[d] });
+                    outside && !beyond_open
+                }),
+        );
     }
     for b in &case.wall {
         points.extend(lattice(&vector(&b.lo), &vector(&b.hi), dx));
@@ -215,7 +245,10 @@ fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Do
             return Err(SphError::invalid(
                 "domain.hi",
                 format!("{:?}", dom.hi),
-                format!("a periodic length of at least 3.3 kernel supports ({:.4} m)", 3.3 * support),
+                format!(
+                    "a periodic length of at least 3.3 kernel supports ({:.4} m)",
+                    3.3 * support
+                ),
             ));
         }
     }

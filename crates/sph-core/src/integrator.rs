@@ -95,7 +95,8 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
     }
 
     fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
-        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        cx.model
+            .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
         &self.rates
     }
 
@@ -110,11 +111,14 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
         self.acc_rho.clear();
         self.acc_rho.resize(n, 0.0);
         self.stage(p, 1.0, 0.5 * dt);
-        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        cx.model
+            .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
         self.stage(p, 2.0, 0.5 * dt);
-        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        cx.model
+            .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
         self.stage(p, 2.0, dt);
-        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        cx.model
+            .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
         let (w0, r) = (&self.w0, &self.rates);
         let (ax, au, ar, d0) = (&self.acc_x, &self.acc_u, &self.acc_rho, &self.diff0);
         let s = dt / 6.0;
@@ -143,7 +147,8 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
     }
 
     fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
-        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        cx.model
+            .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
         &self.rates
     }
 
@@ -160,7 +165,8 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
                 *u += r.du[i] * half;
                 *rho += (r.drho[i] + r.drho_diff[i]) * half;
             });
-        cx.model.evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        cx.model
+            .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
         let (w0, r) = (&self.w0, &self.rates);
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())

@@ -107,7 +107,11 @@ impl Kernel for WendlandC2 {
     const SUPPORT: f64 = 2.0;
     fn new(h: f64, dim: usize) -> Self {
         let alpha = normalisation(h, dim, (7.0 / (4.0 * PI), 21.0 / (16.0 * PI)));
-        Self { h, inv_h: 1.0 / h, alpha }
+        Self {
+            h,
+            inv_h: 1.0 / h,
+            alpha,
+        }
     }
     fn h(&self) -> f64 {
         self.h
@@ -130,7 +134,11 @@ impl Kernel for WendlandC4 {
     const SUPPORT: f64 = 2.0;
     fn new(h: f64, dim: usize) -> Self {
         let alpha = normalisation(h, dim, (9.0 / (4.0 * PI), 495.0 / (256.0 * PI)));
-        Self { h, inv_h: 1.0 / h, alpha }
+        Self {
+            h,
+            inv_h: 1.0 / h,
+            alpha,
+        }
     }
     fn h(&self) -> f64 {
         self.h
@@ -153,7 +161,11 @@ impl Kernel for CubicSpline {
     const SUPPORT: f64 = 2.0;
     fn new(h: f64, dim: usize) -> Self {
         let alpha = normalisation(h, dim, (10.0 / (7.0 * PI), 1.0 / PI));
-        Self { h, inv_h: 1.0 / h, alpha }
+        Self {
+            h,
+            inv_h: 1.0 / h,
+            alpha,
+        }
     }
     fn h(&self) -> f64 {
         self.h
@@ -184,7 +196,11 @@ impl Kernel for QuinticSpline {
     const SUPPORT: f64 = 3.0;
     fn new(h: f64, dim: usize) -> Self {
         let alpha = normalisation(h, dim, (7.0 / (478.0 * PI), 1.0 / (120.0 * PI)));
-        Self { h, inv_h: 1.0 / h, alpha }
+        Self {
+            h,
+            inv_h: 1.0 / h,
+            alpha,
+        }
     }
     fn h(&self) -> f64 {
         self.h
@@ -223,7 +239,11 @@ impl Kernel for Gaussian {
         let a2 = 1.0 / (PI * (1.0 - e9));
         let a3 = 1.0 / (PI.powf(1.5) * ERF_3 - 6.0 * PI * e9);
         let alpha = normalisation(h, dim, (a2, a3));
-        Self { h, inv_h: 1.0 / h, alpha }
+        Self {
+            h,
+            inv_h: 1.0 / h,
+            alpha,
+        }
     }
     fn h(&self) -> f64 {
         self.h
@@ -333,7 +353,10 @@ mod tests {
 
     #[test]
     fn gradient_is_finite_at_the_origin() {
-        assert_eq!(WendlandC2::new(1.0, 2).dw_over_r(0.0), -5.0 * 7.0 / (4.0 * PI));
+        assert_eq!(
+            WendlandC2::new(1.0, 2).dw_over_r(0.0),
+            -5.0 * 7.0 / (4.0 * PI)
+        );
         assert!(QuinticSpline::new(1.0, 3).dw_over_r(0.0).is_finite());
         assert!(CubicSpline::new(1.0, 3).dw_over_r(0.0).is_finite());
     }

@@ -79,7 +79,13 @@ impl<const D: usize> Grid<D> {
                 dims[d] = (((hi - lo) / radius).floor() as usize + 1).max(1);
             }
         }
-        Self { origin, cell, dims, periodic, cell_start: Vec::new() }
+        Self {
+            origin,
+            cell,
+            dims,
+            periodic,
+            cell_start: Vec::new(),
+        }
     }
 
     /// Cell coordinates of a point, clamped into the grid (open directions) or wrapped (periodic).
@@ -88,7 +94,11 @@ impl<const D: usize> Grid<D> {
         for d in 0..D {
             let k = ((p[d] - self.origin[d]) / self.cell[d]).floor() as i64;
             let n = self.dims[d] as i64;
-            c[d] = if self.periodic[d] { k.rem_euclid(n) } else { k.clamp(0, n - 1) } as usize;
+            c[d] = if self.periodic[d] {
+                k.rem_euclid(n)
+            } else {
+                k.clamp(0, n - 1)
+            } as usize;
         }
         c
     }
@@ -141,7 +151,11 @@ impl<const D: usize> NeighbourList<D> {
     ) -> (Self, Vec<usize>) {
         let radius = support + skin;
         let mut grid = Grid::new(&particles.x, domain, radius);
-        let keys: Vec<usize> = particles.x.iter().map(|p| grid.flat(&grid.coords(p))).collect();
+        let keys: Vec<usize> = particles
+            .x
+            .iter()
+            .map(|p| grid.flat(&grid.coords(p)))
+            .collect();
         let order = counting_sort(&keys, grid.n_cells(), &mut grid.cell_start);
         particles.permute(&order);
         let lists = gather_lists(particles, domain, &grid, radius);
@@ -151,7 +165,14 @@ impl<const D: usize> NeighbourList<D> {
             offsets.push(offsets.last().unwrap() + l.len());
         }
         let indices = lists.concat();
-        let list = Self { offsets, indices, radius, skin, grid, x_ref: particles.x.clone() };
+        let list = Self {
+            offsets,
+            indices,
+            radius,
+            skin,
+            grid,
+            x_ref: particles.x.clone(),
+        };
         (list, order)
     }
 
@@ -249,7 +270,11 @@ mod tests {
         let mut p = Particles::default();
         for _ in 0..n {
             let x = Vector::<D>::from_fn(|_, _| rng.random::<f64>());
-            let kind = if rng.random::<f64>() < 0.2 { Kind::Wall } else { Kind::Fluid };
+            let kind = if rng.random::<f64>() < 0.2 {
+                Kind::Wall
+            } else {
+                Kind::Fluid
+            };
             p.push(kind, x, Vector::zeros(), 1.0, 1.0);
         }
         p

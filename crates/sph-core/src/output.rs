@@ -30,7 +30,10 @@ impl Output {
     /// Creates `dir`; refuses a non-empty existing folder unless `overwrite`.
     pub fn create(dir: &Path, overwrite: bool) -> Result<Self> {
         if dir.exists() {
-            let non_empty = fs::read_dir(dir).map_err(|e| SphError::output(dir, e))?.next().is_some();
+            let non_empty = fs::read_dir(dir)
+                .map_err(|e| SphError::output(dir, e))?
+                .next()
+                .is_some();
             if non_empty && !overwrite {
                 return Err(SphError::output(
                     dir,
@@ -42,7 +45,11 @@ impl Output {
             }
         }
         fs::create_dir_all(dir).map_err(|e| SphError::output(dir, e))?;
-        Ok(Self { dir: dir.to_path_buf(), entries: Vec::new(), series: None })
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            entries: Vec::new(),
+            series: None,
+        })
     }
 
     pub fn dir(&self) -> &Path {
@@ -51,15 +58,26 @@ impl Output {
 
     /// Writes a text file atomically inside the folder.
     pub fn write_text(&self, name: &str, text: &str) -> Result<()> {
-        atomic_write(&self.dir.join(name), |tmp| fs::write(tmp, text).map_err(|e| e.to_string()))
+        atomic_write(&self.dir.join(name), |tmp| {
+            fs::write(tmp, text).map_err(|e| e.to_string())
+        })
     }
 
     /// Writes one HDF5 snapshot and refreshes the XDMF index.
-    pub fn snapshot<const D: usize>(&mut self, p: &Particles<D>, time: f64, step: u64) -> Result<PathBuf> {
+    pub fn snapshot<const D: usize>(
+        &mut self,
+        p: &Particles<D>,
+        time: f64,
+        step: u64,
+    ) -> Result<PathBuf> {
         let name = format!("particles_{:06}.h5", self.entries.len());
         let path = self.dir.join(&name);
         write_snapshot(&path, p, time, step)?;
-        self.entries.push(Entry { file: name, time, n: p.len() });
+        self.entries.push(Entry {
+            file: name,
+            time,
+            n: p.len(),
+        });
         self.write_text("particles.xmf", &xdmf(&self.entries))?;
         Ok(path)
     }
@@ -79,14 +97,19 @@ impl Output {
         let path = self.dir.join("timeseries.csv");
         if let Some(w) = self.series.as_mut() {
             let row: Vec<String> = values.iter().map(|v| format!("{v:.10e}")).collect();
-            writeln!(w, "{}", row.join(",")).and_then(|_| w.flush()).map_err(|e| SphError::output(&path, e))?;
+            writeln!(w, "{}", row.join(","))
+                .and_then(|_| w.flush())
+                .map_err(|e| SphError::output(&path, e))?;
         }
         Ok(())
     }
 }
 
 /// Writes `f(tmp)` to a temporary sibling of `path`, then renames it into place.
-fn atomic_write(path: &Path, f: impl FnOnce(&Path) -> std::result::Result<(), String>) -> Result<()> {
+fn atomic_write(
+    path: &Path,
+    f: impl FnOnce(&Path) -> std::result::Result<(), String>,
+) -> Result<()> {
     let tmp = path.with_extension(format!(
         "{}.partial",
         path.extension().and_then(|e| e.to_str()).unwrap_or("")
@@ -97,30 +120,62 @@ fn atomic_write(path: &Path, f: impl FnOnce(&Path) -> std::result::Result<(), St
 
 /// Positions and velocities padded to three components (what ParaView expects).
 fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Vec<f64> {
-    v.iter().flat_map(|x| (0..3).map(move |d| if d < D { x[d] } else { 0.0 })).collect()
+    v.iter()
+        .flat_map(|x| (0..3).map(move |d| if d < D { x[d] } else { 0.0 }))
+        .collect()
 }
 
 /// Writes one HDF5 snapshot: `position`, `velocity` (N×3), `density`, `pressure`,
 /// `kind` (0 fluid, 1 wall), `id`; attributes `time`, `step`, `dimension`.
-pub fn write_snapshot<const D: usize>(path: &Path, p: &Particles<D>, time: f64, step: u64) -> Result<()> {
+pub fn write_snapshot<const D: usize>(
+    path: &Path,
+    p: &Particles<D>,
+    time: f64,
+    step: u64,
+) -> Result<()> {
     atomic_write(path, |tmp| {
         write_h5(tmp, p, time, step).map_err(|e| e.to_string())
     })
 }
 
-fn write_h5<const D: usize>(path: &Path, p: &Particles<D>, time: f64, step: u64) -> hdf5::Result<()> {
+fn write_h5<const D: usize>(
+    path: &Path,
+    p: &Particles<D>,
+    time: f64,
+    step: u64,
+) -> hdf5::Result<()> {
     let file = hdf5::File::create(path)?;
     let n = p.len();
-    file.new_dataset::<f64>().shape((n, 3)).create("position")?.write_raw(&padded(&p.x))?;
-    file.new_dataset::<f64>().shape((n, 3)).create("velocity")?.write_raw(&padded(&p.u))?;
-    file.new_dataset::<f64>().shape(n).create("density")?.write_raw(&p.rho)?;
-    file.new_dataset::<f64>().shape(n).create("pressure")?.write_raw(&p.p)?;
+    file.new_dataset::<f64>()
+        .shape((n, 3))
+        .create("position")?
+        .write_raw(&padded(&p.x))?;
+    file.new_dataset::<f64>()
+        .shape((n, 3))
+        .create("velocity")?
+        .write_raw(&padded(&p.u))?;
+    file.new_dataset::<f64>()
+        .shape(n)
+        .create("density")?
+        .write_raw(&p.rho)?;
+    file.new_dataset::<f64>()
+        .shape(n)
+        .create("pressure")?
+        .write_raw(&p.p)?;
     let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
-    file.new_dataset::<u8>().shape(n).create("kind")?.write_raw(&kind)?;
-    file.new_dataset::<u32>().shape(n).create("id")?.write_raw(&p.id)?;
+    file.new_dataset::<u8>()
+        .shape(n)
+        .create("kind")?
+        .write_raw(&kind)?;
+    file.new_dataset::<u32>()
+        .shape(n)
+        .create("id")?
+        .write_raw(&p.id)?;
     file.new_attr::<f64>().create("time")?.write_scalar(&time)?;
     file.new_attr::<u64>().create("step")?.write_scalar(&step)?;
-    file.new_attr::<u32>().create("dimension")?.write_scalar(&(D as u32))?;
+    file.new_attr::<u32>()
+        .create("dimension")?
+        .write_scalar(&(D as u32))?;
     file.close()
 }
 
@@ -131,7 +186,13 @@ pub fn read_snapshot(path: &Path) -> Result<(Vec<f64>, Vec<f64>, Vec<Kind>)> {
         let x = f.dataset("position")?.read_raw::<f64>()?;
         let p = f.dataset("pressure")?.read_raw::<f64>()?;
         let k = f.dataset("kind")?.read_raw::<u8>()?;
-        Ok((x, p, k.iter().map(|&k| if k == 0 { Kind::Fluid } else { Kind::Wall }).collect()))
+        Ok((
+            x,
+            p,
+            k.iter()
+                .map(|&k| if k == 0 { Kind::Fluid } else { Kind::Wall })
+                .collect(),
+        ))
     };
     read().map_err(|e| SphError::output(path, e))
 }
@@ -162,7 +223,10 @@ fn xdmf(entries: &[Entry]) -> String {
             "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\"/>\n",
             e.n
         );
-        s += &format!("    <Geometry GeometryType=\"XYZ\">{}</Geometry>\n", item("position", &n3, "Float", 8));
+        s += &format!(
+            "    <Geometry GeometryType=\"XYZ\">{}</Geometry>\n",
+            item("position", &n3, "Float", 8)
+        );
         s += &format!(
             "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">{}</Attribute>\n",
             item("velocity", &n3, "Float", 8)

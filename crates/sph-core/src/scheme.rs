@@ -5,7 +5,9 @@
 use crate::case::{Case, DiffusionChoice, ViscosityChoice, WallCondition};
 use crate::diffusion::{DeltaSph, DensityDiffusion, Ferrari, MolteniColagrossi, NoDiffusion};
 use crate::equations::{Model, Physics, Scheme};
-use crate::kernel::{CubicSpline, Gaussian, Kernel, KernelChoice, QuinticSpline, WendlandC2, WendlandC4};
+use crate::kernel::{
+    CubicSpline, Gaussian, Kernel, KernelChoice, QuinticSpline, WendlandC2, WendlandC4,
+};
 use crate::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
 
 /// Builds the model a case asks for, with physical constants already resolved.
@@ -20,7 +22,11 @@ pub fn build_model<const D: usize>(case: &Case, physics: Physics<D>) -> Box<dyn 
     }
 }
 
-fn with_kernel<const D: usize, K: Kernel>(case: &Case, physics: Physics<D>, kernel: K) -> Box<dyn Model<D>> {
+fn with_kernel<const D: usize, K: Kernel>(
+    case: &Case,
+    physics: Physics<D>,
+    kernel: K,
+) -> Box<dyn Model<D>> {
     let s = &case.scheme;
     let delta = s.delta;
     match s.diffusion {
@@ -28,9 +34,15 @@ fn with_kernel<const D: usize, K: Kernel>(case: &Case, physics: Physics<D>, kern
         DiffusionChoice::MolteniColagrossi => {
             with_diffusion(case, physics, kernel, MolteniColagrossi { delta })
         }
-        DiffusionChoice::Ferrari => {
-            with_diffusion(case, physics, kernel, Ferrari { delta, h: kernel.h() })
-        }
+        DiffusionChoice::Ferrari => with_diffusion(
+            case,
+            physics,
+            kernel,
+            Ferrari {
+                delta,
+                h: kernel.h(),
+            },
+        ),
         DiffusionChoice::DeltaSph => with_diffusion(case, physics, kernel, DeltaSph { delta }),
     }
 }

@@ -116,7 +116,12 @@ impl<const D: usize> Simulation<D> {
     }
 
     fn max_speed(&self) -> f64 {
-        self.particles.u.par_iter().map(|u| u.norm_squared()).reduce(|| 0.0, f64::max).sqrt()
+        self.particles
+            .u
+            .par_iter()
+            .map(|u| u.norm_squared())
+            .reduce(|| 0.0, f64::max)
+            .sqrt()
     }
 
     /// Largest displacement one step may add: `Δt_max (|u|max + |a|max Δt_max)`.
@@ -144,7 +149,13 @@ impl<const D: usize> Simulation<D> {
     /// in the current particle order.
     pub fn rates(&mut self) -> Rates<D> {
         let mut rates = Rates::default();
-        self.model.evaluate(&mut self.particles, &self.list, &self.domain, &mut rates, true);
+        self.model.evaluate(
+            &mut self.particles,
+            &self.list,
+            &self.domain,
+            &mut rates,
+            true,
+        );
         rates
     }
 
@@ -152,11 +163,21 @@ impl<const D: usize> Simulation<D> {
     /// (non-finite or runaway) state in place for a final snapshot.
     pub fn step(&mut self) -> Result<()> {
         let reach = self.step_reach();
-        if self.list.needs_rebuild(&self.particles.x, &self.domain, reach) {
+        if self
+            .list
+            .needs_rebuild(&self.particles.x, &self.domain, reach)
+        {
             self.rebuild(reach);
         }
-        let mut cx = Context { model: self.model.as_mut(), list: &self.list, domain: &self.domain };
-        let a_max = self.integrator.begin(&mut self.particles, &mut cx).max_acceleration();
+        let mut cx = Context {
+            model: self.model.as_mut(),
+            list: &self.list,
+            domain: &self.domain,
+        };
+        let a_max = self
+            .integrator
+            .begin(&mut self.particles, &mut cx)
+            .max_acceleration();
         let mut dt = self.control.dt(a_max);
         let remaining = self.case.time.end - self.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
@@ -212,7 +233,13 @@ impl<const D: usize> Simulation<D> {
 
     /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first).
     pub fn probe_pressure(&self, point: &Vector<D>) -> f64 {
-        diagnostics::probe_pressure(self.model.as_ref(), &self.particles, &self.list, &self.domain, point)
+        diagnostics::probe_pressure(
+            self.model.as_ref(),
+            &self.particles,
+            &self.list,
+            &self.domain,
+            point,
+        )
     }
 
     pub fn surge_front(&self, axis: usize) -> f64 {
@@ -220,7 +247,11 @@ impl<const D: usize> Simulation<D> {
     }
 
     pub fn n_fluid(&self) -> usize {
-        self.particles.kind.iter().filter(|&&k| k == Kind::Fluid).count()
+        self.particles
+            .kind
+            .iter()
+            .filter(|&&k| k == Kind::Fluid)
+            .count()
     }
 }
 
@@ -233,7 +264,15 @@ impl<const D: usize> Simulation<D> {
             h.extend(["kinetic", "potential", "internal", "total"].map(String::from));
         }
         if self.budget.is_some() {
-            h.extend(["work_of_dissipation_and_walls", "viscous_power", "diffusive_power", "wall_power"].map(String::from));
+            h.extend(
+                [
+                    "work_of_dissipation_and_walls",
+                    "viscous_power",
+                    "diffusive_power",
+                    "wall_power",
+                ]
+                .map(String::from),
+            );
         }
         h.push("max_density_variation".into());
         h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));

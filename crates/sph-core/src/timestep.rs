@@ -39,7 +39,14 @@ mod tests {
 
     #[test]
     fn each_limit_can_bind() {
-        let c = TimeStepControl { cfl: 1.5, viscous_cfl: 0.125, force_cfl: 0.25, h: 0.01, c0: 10.0, nu: 0.0 };
+        let c = TimeStepControl {
+            cfl: 1.5,
+            viscous_cfl: 0.125,
+            force_cfl: 0.25,
+            h: 0.01,
+            c0: 10.0,
+            nu: 0.0,
+        };
         assert_eq!(c.dt(0.0), 1.5e-3);
         let visc = TimeStepControl { nu: 0.01, ..c };
         assert!((visc.dt(0.0) - 0.125e-4 / 0.01).abs() < 1e-15);

@@ -345,7 +345,18 @@ impl Case {
             let found = lookup(&value, &key)
                 .map(|v| v.to_string())
                 .unwrap_or_else(|| "(missing)".into());
-            SphError::invalid(key, found, e.inner().to_string())
+            let message = e
+                .inner()
+                .to_string()
+                .lines()
+                .next()
+                .unwrap_or("")
+                .to_string();
+            SphError::Schema {
+                key,
+                value: found,
+                message,
+            }
         })?;
         case.validate()?;
         Ok(case)
@@ -672,7 +683,7 @@ mod tests {
     #[test]
     fn wrong_type_names_key_and_value() {
         let e = error_of(&MINIMAL.replace("end = 0.1", "end = \"soon\""));
-        assert!(e.starts_with("time.end = \"soon\""), "{e}");
+        assert!(e.starts_with("time.end = \"soon\": invalid type"), "{e}");
     }
 
     #[test]

@@ -15,6 +15,13 @@ pub enum SphError {
         value: String,
         expected: String,
     },
+    /// A key is unknown or has the wrong type.
+    #[error("{key} = {value}: {message}")]
+    Schema {
+        key: String,
+        value: String,
+        message: String,
+    },
     /// The run blew up; the output written so far is kept.
     #[error("unstable at t = {time:.6} s (step {step}): {reason} at particle {particle} (x = {position})")]
     Unstable {

@@ -353,10 +353,7 @@ mod tests {
 
     #[test]
     fn gradient_is_finite_at_the_origin() {
-        assert_eq!(
-            WendlandC2::new(1.0, 2).dw_over_r(0.0),
-            -5.0 * 7.0 / (4.0 * PI)
-        );
+        assert!((WendlandC2::new(1.0, 2).dw_over_r(0.0) + 35.0 / (4.0 * PI)).abs() < 1e-14);
         assert!(QuinticSpline::new(1.0, 3).dw_over_r(0.0).is_finite());
         assert!(CubicSpline::new(1.0, 3).dw_over_r(0.0).is_finite());
     }

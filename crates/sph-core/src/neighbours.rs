@@ -283,8 +283,9 @@ mod tests {
     fn check<const D: usize>(periodic: [bool; D], seed: u64) {
         let mut p = random_set::<D>(if D == 2 { 3000 } else { 4000 }, seed);
         let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), periodic);
-        let (list, _) = NeighbourList::build(&mut p, &domain, 0.06, 0.01);
-        let r2 = 0.07f64 * 0.07;
+        let support = if D == 2 { 0.06 } else { 0.12 };
+        let (list, _) = NeighbourList::build(&mut p, &domain, support, 0.01);
+        let r2 = (support + 0.01f64).powi(2);
         let mut total = 0;
         for i in 0..p.len() {
             let mut brute: Vec<u32> = (0..p.len())
@@ -328,7 +329,7 @@ mod tests {
     #[test]
     fn minimum_image_wraps_across_the_box() {
         let domain = Domain::<2>::new(Vector::zeros(), Vector::repeat(1.0), [true, false]);
-        let s = domain.separation(&Vector::new(0.99, 0.5), &Vector::new(0.01, 0.2));
+        let s = domain.separation(&Vector::<2>::new(0.99, 0.5), &Vector::<2>::new(0.01, 0.2));
         assert!((s[0] + 0.02).abs() < 1e-12 && (s[1] - 0.3).abs() < 1e-12);
     }
 

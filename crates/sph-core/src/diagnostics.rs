@@ -56,14 +56,6 @@ pub fn max_density_variation<const D: usize>(p: &Particles<D>, rho0: f64) -> f64
         .reduce(|| 0.0, f64::max)
 }
 
-/// Total linear momentum `Σ m_i u_i` of the fluid.
-pub fn momentum<const D: usize>(p: &Particles<D>) -> Vector<D> {
-    (0..p.len())
-        .filter(|&i| p.kind[i] == Kind::Fluid)
-        .map(|i| p.u[i] * p.mass[i])
-        .sum()
-}
-
 /// Shepard-interpolated fluid pressure at `point`.
 pub fn probe_pressure<const D: usize>(
     model: &dyn Model<D>,

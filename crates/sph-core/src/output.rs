@@ -6,7 +6,7 @@
 //! is never reused unless the caller explicitly allows it.
 
 use crate::error::{Result, SphError};
-use crate::particles::{Kind, Particles};
+use crate::particles::Particles;
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -177,24 +177,6 @@ fn write_h5<const D: usize>(
         .create("dimension")?
         .write_scalar(&(D as u32))?;
     file.close()
-}
-
-/// Reads back a snapshot's positions (N×3, row-major), pressure and kind.
-pub fn read_snapshot(path: &Path) -> Result<(Vec<f64>, Vec<f64>, Vec<Kind>)> {
-    let read = || -> hdf5::Result<_> {
-        let f = hdf5::File::open(path)?;
-        let x = f.dataset("position")?.read_raw::<f64>()?;
-        let p = f.dataset("pressure")?.read_raw::<f64>()?;
-        let k = f.dataset("kind")?.read_raw::<u8>()?;
-        Ok((
-            x,
-            p,
-            k.iter()
-                .map(|&k| if k == 0 { Kind::Fluid } else { Kind::Wall })
-                .collect(),
-        ))
-    };
-    read().map_err(|e| SphError::output(path, e))
 }
 
 fn xdmf(entries: &[Entry]) -> String {

@@ -9,7 +9,7 @@ use crate::error::{Result, SphError};
 use crate::geometry;
 use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::neighbours::NeighbourList;
-use crate::particles::{Kind, Particles, Vector};
+use crate::particles::{Particles, Vector};
 use crate::scheme::{build_model, viscosity_k, wall_viscous_weight};
 use crate::timestep::TimeStepControl;
 use crate::viscosity::equivalent_nu;
@@ -247,11 +247,7 @@ impl<const D: usize> Simulation<D> {
     }
 
     pub fn n_fluid(&self) -> usize {
-        self.particles
-            .kind
-            .iter()
-            .filter(|&&k| k == Kind::Fluid)
-            .count()
+        self.particles.n_fluid()
     }
 }
 

@@ -340,24 +340,8 @@ impl Case {
     /// Deserialises a parsed TOML table (the Python front goes through here too).
     pub fn from_table(table: toml::Table) -> Result<Self> {
         let value = toml::Value::Table(table);
-        let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
-            let key = e.path().to_string();
-            let found = lookup(&value, &key)
-                .map(|v| v.to_string())
-                .unwrap_or_else(|| "(missing)".into());
-            let message = e
-                .inner()
-                .to_string()
-                .lines()
-                .next()
-                .unwrap_or("")
-                .to_string();
-            SphError::Schema {
-                key,
-                value: found,
-                message,
-            }
-        })?;
+        let case: Case = serde_path_to_error::deserialize(value.clone())
+            .map_err(|e| schema_error(&value, e.path().to_string(), e.inner().to_string()))?;
         case.validate()?;
         Ok(case)
     }
@@ -609,6 +593,35 @@ fn check_box(key: &str, lo: &[f64], hi: &[f64], d: usize) -> Result<()> {
 }
 
 /// Looks a dotted path like `scheme.delta` or `fluid_block[0].lo` up in the parsed table.
+/// One line naming the key: a missing key is named in full (`particles.spacing =
+/// (missing): missing field, a required key`), other errors show the value found.
+fn schema_error(root: &toml::Value, path: String, inner: String) -> SphError {
+    let message = inner.lines().next().unwrap_or("").to_string();
+    let missing = message
+        .strip_prefix("missing field `")
+        .and_then(|rest| rest.split('`').next());
+    if let Some(field) = missing {
+        let key = if path == "." {
+            field.to_string()
+        } else {
+            format!("{path}.{field}")
+        };
+        return SphError::Schema {
+            key,
+            value: "(missing)".into(),
+            message: "missing field, a required key".into(),
+        };
+    }
+    let value = lookup(root, &path)
+        .map(|v| v.to_string())
+        .unwrap_or_else(|| "(missing)".into());
+    SphError::Schema {
+        key: path,
+        value,
+        message,
+    }
+}
+
 fn lookup<'a>(v: &'a toml::Value, path: &str) -> Option<&'a toml::Value> {
     let mut cur = v;
     for part in path.split('.') {

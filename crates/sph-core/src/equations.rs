@@ -92,6 +92,14 @@ pub trait Model<const D: usize>: Send + Sync {
         rates: &mut Rates<D>,
         with_diffusion: bool,
     );
+    /// Pressure of the fluid (EOS) and of the walls (extrapolated) at the current
+    /// state, without the pair loop: what output and probes need.
+    fn update_pressure_field(
+        &self,
+        particles: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    );
     /// Viscous and diffusive powers at the state of the last `evaluate` call.
     fn powers(
         &self,
@@ -298,9 +306,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         with_diffusion: bool,
     ) {
         rates.resize(particles.len());
-        self.update_pressure(particles);
-        let ph = self.physics;
-        extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
+        self.update_pressure_field(particles, list, domain);
         if with_diffusion && Df::ACTIVE {
             if Df::NEEDS_GRADIENT {
                 let mut grad = std::mem::take(&mut self.grad);
@@ -311,6 +317,17 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         } else {
             self.pair_loop::<false>(particles, list, domain, rates);
         }
+    }
+
+    fn update_pressure_field(
+        &self,
+        particles: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) {
+        self.update_pressure(particles);
+        let ph = self.physics;
+        extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
     }
 
     fn powers(

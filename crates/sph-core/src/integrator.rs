@@ -29,7 +29,7 @@ pub struct Context<'a, const D: usize> {
 
 /// A time integrator. `begin` evaluates the rates at the start of the step (the time
 /// step is chosen from them), `advance` completes the step.
-pub trait TimeIntegrator<const D: usize>: Send {
+pub trait TimeIntegrator<const D: usize>: Send + Sync {
     /// Force evaluations (pair loops) per step.
     fn evaluations_per_step(&self) -> usize;
     fn begin(&mut self, particles: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D>;

@@ -138,6 +138,47 @@ pub fn write_snapshot<const D: usize>(
     })
 }
 
+/// Writes a lone snapshot `path` (HDF5, as [`write_snapshot`]) and beside it an XDMF
+/// index (`path` with the extension `.xmf`) that ParaView opens, the layout of a run
+/// folder. Existing files are kept unless `overwrite`; returns the index's path.
+pub fn write_indexed_snapshot<const D: usize>(
+    path: &Path,
+    p: &Particles<D>,
+    time: f64,
+    step: u64,
+    overwrite: bool,
+) -> Result<PathBuf> {
+    let index = path.with_extension("xmf");
+    if index == path {
+        return Err(SphError::output(
+            path,
+            "a snapshot needs an extension other than .xmf (e.g. .h5)",
+        ));
+    }
+    for file in [path, index.as_path()] {
+        if file.exists() && !overwrite {
+            return Err(SphError::output(
+                file,
+                "file exists; choose another name or pass overwrite=True",
+            ));
+        }
+    }
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| SphError::output(path, "not a file name"))?;
+    write_snapshot(path, p, time, step)?;
+    let entry = Entry {
+        file: name.to_string(),
+        time,
+        n: p.len(),
+    };
+    atomic_write(&index, |tmp| {
+        fs::write(tmp, xdmf(&[entry])).map_err(|e| e.to_string())
+    })?;
+    Ok(index)
+}
+
 fn write_h5<const D: usize>(
     path: &Path,
     p: &Particles<D>,

@@ -95,10 +95,7 @@ impl<const D: usize> Simulation<D> {
             last_acceleration: 0.0,
         };
         sim.rebuild(0.0);
-        sim.refresh_derived();
-        if let Some(b) = sim.budget.as_mut() {
-            b.last = sim.model.powers(&sim.particles, &sim.list, &sim.domain);
-        }
+        sim.state_changed();
         Ok(sim)
     }
 
@@ -139,10 +136,14 @@ impl<const D: usize> Simulation<D> {
         self.counters.rebuilds += 1;
     }
 
-    /// Pressure of fluid and walls for the current state (for output and probes).
-    fn refresh_derived(&mut self) {
-        let rates = self.rates();
-        self.last_acceleration = rates.max_acceleration();
+    /// Re-derives what depends on the state after it was set from outside the stepping
+    /// (construction, or velocities and densities edited by a front end): pressures, the
+    /// acceleration that sizes the list skin and the energy-budget powers.
+    pub fn state_changed(&mut self) {
+        self.last_acceleration = self.rates().max_acceleration();
+        if let Some(b) = self.budget.as_mut() {
+            b.last = self.model.powers(&self.particles, &self.list, &self.domain);
+        }
     }
 
     /// The rates `dρ/dt` (without and with diffusion) and `du/dt` at the current state,
@@ -159,9 +160,15 @@ impl<const D: usize> Simulation<D> {
         rates
     }
 
-    /// Advances one step; on blow-up returns [`SphError::Unstable`] and leaves the
-    /// (non-finite or runaway) state in place for a final snapshot.
+    /// Advances one step, shortened to land on the case's end time when it would pass it.
+    /// On blow-up returns [`SphError::Unstable`] and leaves the (non-finite or runaway)
+    /// state in place for a final snapshot.
     pub fn step(&mut self) -> Result<()> {
+        self.step_until(self.case.time.end)
+    }
+
+    /// Advances one step, shortened to land on `limit` when it would pass it.
+    pub fn step_until(&mut self, limit: f64) -> Result<()> {
         let reach = self.step_reach();
         if self
             .list
@@ -179,7 +186,7 @@ impl<const D: usize> Simulation<D> {
             .begin(&mut self.particles, &mut cx)
             .max_acceleration();
         let mut dt = self.control.dt(a_max);
-        let remaining = self.case.time.end - self.time;
+        let remaining = limit - self.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
             dt = remaining;
         }
@@ -192,7 +199,7 @@ impl<const D: usize> Simulation<D> {
         self.counters.steps += 1;
         self.counters.evaluations += self.integrator.evaluations_per_step() as u64;
         if self.budget.is_some() {
-            self.refresh_derived();
+            self.rates();
             let now = self.model.powers(&self.particles, &self.list, &self.domain);
             let b = self.budget.as_mut().unwrap();
             b.dissipated += 0.5 * dt * (b.last.total() + now.total());
@@ -217,9 +224,11 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Brings pressures (fluid and walls) up to date with the current state. Call
-    /// before writing output or reading pressure after steps.
+    /// before writing output or reading pressure after steps. It changes nothing the
+    /// next step depends on, so a run gives the same bits whether or not it is called.
     pub fn sync_pressure(&mut self) {
-        self.refresh_derived();
+        self.model
+            .update_pressure_field(&mut self.particles, &self.list, &self.domain);
     }
 
     pub fn energies(&self) -> Energies {

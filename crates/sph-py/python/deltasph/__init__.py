@@ -1,0 +1,30 @@
+"""deltasph: a weakly-compressible δ-SPH solver for free-surface flows.
+
+Set up a case from a TOML file or a dict with the same keys, step it, and read
+the particle state as numpy arrays::
+
+    import deltasph as ds
+    sim = ds.Simulation.from_toml("examples/dam_break_2d.toml")
+    sim.run(until=0.3)
+    x, p = sim.positions, sim.pressure
+
+All quantities are SI. Arrays are copies in particle-id order (row i is always the
+particle created i-th), so they can be compared across steps and edited freely.
+"""
+
+from ._core import Simulation, __version__
+from .errors import ConfigError, ConfigKeyError, InstabilityError
+
+#: Values of ``Simulation.kind``.
+FLUID = 0
+WALL = 1
+
+__all__ = [
+    "Simulation",
+    "FLUID",
+    "WALL",
+    "ConfigError",
+    "ConfigKeyError",
+    "InstabilityError",
+    "__version__",
+]

@@ -1,0 +1,105 @@
+"""Type stubs of the native part of deltasph (all quantities SI)."""
+
+from collections.abc import Callable, Mapping
+from os import PathLike
+from pathlib import Path
+from typing import Any, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+_Progress = Union[bool, None, Callable[[float, int], object]]
+
+class Simulation:
+    """A weakly-compressible δ-SPH simulation, 2D or 3D.
+
+    Arrays are copies in particle-id order: row ``i`` is always the particle
+    created ``i``-th, across steps and neighbour-list rebuilds.
+    """
+
+    def __init__(self, config: Mapping[str, Any]) -> None:
+        """Builds a simulation from a dict mirroring the TOML case file, key for key.
+
+        Raises ConfigError (ValueError) for a bad value, ConfigKeyError (KeyError)
+        for an unknown or missing key, TypeError if ``config`` is not a dict.
+        """
+    @staticmethod
+    def from_toml(path: Union[str, PathLike[str]]) -> Simulation:
+        """Builds a simulation from a TOML case file (FileNotFoundError if absent)."""
+    def to_toml(self) -> str:
+        """The case as TOML text, every default filled in."""
+    def run(self, until: Optional[float] = None, progress: _Progress = None) -> None:
+        """Advances to time ``until`` [s] (default ``time.end``), landing on it exactly.
+
+        The interpreter is released; Ctrl-C raises KeyboardInterrupt between steps.
+        ``progress``: True for a bar, or ``callable(time, n_steps)``.
+        Raises InstabilityError on blow-up, keeping the state at that moment.
+        """
+    def step(self, n: int = 1) -> None:
+        """Advances exactly ``n`` steps."""
+    @property
+    def time(self) -> float:
+        """Simulated time [s]."""
+    @property
+    def dt(self) -> float:
+        """The last time step [s] (0 before the first step)."""
+    @property
+    def n_steps(self) -> int:
+        """Steps taken so far."""
+    @property
+    def dimension(self) -> int:
+        """2 or 3."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def n_particles(self) -> int:
+        """Fluid and wall particles."""
+    @property
+    def n_fluid(self) -> int: ...
+    @property
+    def sound_speed(self) -> float:
+        """Numerical sound speed c0 [m/s]."""
+    @property
+    def reference_density(self) -> float:
+        """ρ0 [kg/m³]."""
+    @property
+    def smoothing_length(self) -> float:
+        """h [m]."""
+    @property
+    def spacing(self) -> float:
+        """Initial particle spacing Δx [m]."""
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """Positions [m], shape (N, D)."""
+    @property
+    def velocities(self) -> npt.NDArray[np.float64]:
+        """Velocities [m/s], shape (N, D); walls are fixed (zero)."""
+    @property
+    def density(self) -> npt.NDArray[np.float64]:
+        """Density [kg/m³], shape (N,)."""
+    @property
+    def pressure(self) -> npt.NDArray[np.float64]:
+        """Pressure [Pa], shape (N,): EOS for fluid, extrapolated for walls."""
+    @property
+    def mass(self) -> npt.NDArray[np.float64]:
+        """Mass [kg] (per unit depth in 2D), shape (N,)."""
+    @property
+    def kind(self) -> npt.NDArray[np.uint8]:
+        """0 fluid, 1 wall, shape (N,)."""
+    def energies(self) -> dict[str, Optional[float]]:
+        """``kinetic``, ``potential``, ``internal``, ``total`` and ``dissipated`` [J].
+
+        ``dissipated`` is None unless ``diagnostics.energy_budget = true``.
+        """
+    def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,)."""
+    def set_velocities(self, velocities: npt.NDArray[np.float64]) -> None:
+        """Sets velocities from a float64 array (N, D) in id order; wall rows zero."""
+    def set_density(self, density: npt.NDArray[np.float64]) -> None:
+        """Sets densities from a positive float64 array (N,) in id order."""
+    def write_snapshot(
+        self, path: Union[str, PathLike[str]], overwrite: bool = False
+    ) -> Path:
+        """Writes HDF5 at ``path`` and an XDMF index beside it; returns the index path."""

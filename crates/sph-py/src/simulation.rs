@@ -1,0 +1,428 @@
+//! `deltasph.Simulation`: one running case, 2D or 3D, stepped from Python with the
+//! interpreter released; its state read and set through numpy arrays.
+
+use crate::arrays;
+use crate::config;
+use crate::errors::to_py;
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use sph_core::{Case, Kind, Simulation, SphError};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// How long the solver runs detached before it looks at Ctrl-C and reports progress.
+const SLICE: Duration = Duration::from_millis(100);
+
+/// The solver, with its dimension resolved at construction.
+enum Solver {
+    Two(Simulation<2>),
+    Three(Simulation<3>),
+}
+
+/// Runs `$body` with `$s` bound to the `Simulation<D>` inside a [`Solver`].
+macro_rules! each {
+    ($solver:expr, $s:ident => $body:expr) => {
+        match $solver {
+            Solver::Two($s) => $body,
+            Solver::Three($s) => $body,
+        }
+    };
+}
+
+/// Where a call to `run` or `step` stops.
+#[derive(Clone, Copy)]
+enum Target {
+    /// At time `until` (the last step shortened to land on it), or at `max_steps`.
+    Time { until: f64, max_steps: u64 },
+    /// After exactly this step count.
+    Steps(u64),
+}
+
+impl Target {
+    fn reached<const D: usize>(&self, s: &Simulation<D>) -> bool {
+        match *self {
+            Target::Time { until, max_steps } => {
+                s.time >= until * (1.0 - 1e-12) || s.counters.steps >= max_steps
+            }
+            Target::Steps(n) => s.counters.steps >= n,
+        }
+    }
+
+    fn limit<const D: usize>(&self, s: &Simulation<D>) -> f64 {
+        match *self {
+            Target::Time { until, .. } => until,
+            Target::Steps(_) => s.case.time.end,
+        }
+    }
+}
+
+/// Steps towards `target` for at most [`SLICE`] of wall time; `Ok(true)` once reached.
+fn advance<const D: usize>(s: &mut Simulation<D>, target: Target) -> Result<bool, SphError> {
+    let start = Instant::now();
+    while !target.reached(s) {
+        s.step_until(target.limit(s))?;
+        if start.elapsed() >= SLICE {
+            return Ok(target.reached(s));
+        }
+    }
+    Ok(true)
+}
+
+fn set_velocities<const D: usize>(
+    s: &mut Simulation<D>,
+    velocities: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles.id)?;
+    let moving_wall =
+        (0..u.len()).find(|&k| s.particles.kind[k] == Kind::Wall && u[k].norm_squared() > 0.0);
+    if let Some(k) = moving_wall {
+        return Err(PyValueError::new_err(format!(
+            "velocities: row {} is a wall particle, expected zero (walls are fixed)",
+            s.particles.id[k]
+        )));
+    }
+    s.particles.u = u;
+    s.state_changed();
+    Ok(())
+}
+
+fn set_density<const D: usize>(s: &mut Simulation<D>, density: &Bound<'_, PyAny>) -> PyResult<()> {
+    let rho = arrays::read_scalars(density, "density", &s.particles.id)?;
+    if let Some(k) = rho.iter().position(|&r| r <= 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "density: row {} = {}, expected a positive density",
+            s.particles.id[k], rho[k]
+        )));
+    }
+    s.particles.rho = rho;
+    s.state_changed();
+    Ok(())
+}
+
+/// A weakly-compressible δ-SPH simulation.
+///
+/// Build it from a dict with the keys of the TOML case file (see the README's case
+/// reference), or with :meth:`Simulation.from_toml`. State arrays are copies in
+/// particle-id order: row ``i`` is always the particle created ``i``-th.
+#[pyclass(module = "deltasph", name = "Simulation")]
+pub struct PySimulation {
+    solver: Solver,
+    /// Whether stored pressures (and wall densities) match the current positions.
+    pressure_fresh: bool,
+}
+
+impl PySimulation {
+    fn build(py: Python<'_>, case: Case) -> PyResult<Self> {
+        let solver = py
+            .detach(|| match case.dimension {
+                2 => Simulation::<2>::new(case).map(Solver::Two),
+                _ => Simulation::<3>::new(case).map(Solver::Three),
+            })
+            .map_err(|e| to_py(py, e))?;
+        Ok(Self {
+            solver,
+            pressure_fresh: true,
+        })
+    }
+
+    fn case(&self) -> &Case {
+        each!(&self.solver, s => &s.case)
+    }
+
+    fn fresh_pressure(&mut self) {
+        if !self.pressure_fresh {
+            each!(&mut self.solver, s => s.sync_pressure());
+            self.pressure_fresh = true;
+        }
+    }
+
+    /// Steps to `target`, detached from the interpreter, in slices between which
+    /// Ctrl-C is honoured and `report(time, n_steps)` is called.
+    fn drive(
+        &mut self,
+        py: Python<'_>,
+        target: Target,
+        report: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        loop {
+            let solver = &mut self.solver;
+            let outcome = py.detach(|| each!(solver, s => advance(s, target)));
+            self.pressure_fresh = false;
+            let done = outcome.map_err(|e| to_py(py, e))?;
+            py.check_signals()?;
+            if let Some(report) = report {
+                report.call1((self.time(), self.n_steps()))?;
+            }
+            if done {
+                return Ok(());
+            }
+        }
+    }
+}
+
+#[pymethods]
+impl PySimulation {
+    /// Builds a simulation from a dict mirroring the TOML case file, key for key.
+    ///
+    /// Raises ConfigError (a ValueError) for a bad value and ConfigKeyError (also a
+    /// KeyError) for an unknown or missing key, with the command line's message.
+    #[new]
+    fn new(py: Python<'_>, config: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let Ok(dict) = config.cast::<PyDict>() else {
+            return Err(PyTypeError::new_err(format!(
+                "config: got {}, expected a dict with the keys of a case file \
+                 (or use Simulation.from_toml(path))",
+                config.get_type().name()?
+            )));
+        };
+        let table = config::table(dict, "")?;
+        let case = Case::from_table(table).map_err(|e| to_py(py, e))?;
+        Self::build(py, case)
+    }
+
+    /// Builds a simulation from a TOML case file.
+    #[staticmethod]
+    fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        if !path.is_file() {
+            return Err(PyFileNotFoundError::new_err(format!(
+                "{}: no such case file",
+                path.display()
+            )));
+        }
+        let case = Case::from_file(&path).map_err(|e| to_py(py, e))?;
+        Self::build(py, case)
+    }
+
+    /// The case as TOML text (every key, defaults filled in): what reproduces this run.
+    fn to_toml(&self) -> PyResult<String> {
+        toml::to_string(self.case()).map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// Advances to simulated time ``until`` [s] (default: the case's ``time.end``),
+    /// the last step shortened to land on it; stops early at ``time.max_steps``.
+    ///
+    /// The interpreter is released while the solver runs; Ctrl-C raises
+    /// KeyboardInterrupt between steps and leaves a consistent state. ``progress``:
+    /// True for a progress bar (tqdm when installed), or a callable
+    /// ``progress(time, n_steps)`` called about ten times a second. Raises
+    /// InstabilityError if the run blows up; the state at that moment is kept.
+    #[pyo3(signature = (until=None, progress=None))]
+    fn run(
+        &mut self,
+        py: Python<'_>,
+        until: Option<f64>,
+        progress: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let until = until.unwrap_or(self.case().time.end);
+        if !until.is_finite() {
+            return Err(PyValueError::new_err(format!(
+                "until = {until}: expected a finite time in seconds"
+            )));
+        }
+        let target = Target::Time {
+            until,
+            max_steps: self.case().time.max_steps.unwrap_or(u64::MAX),
+        };
+        let helpers = py.import("deltasph._progress")?;
+        let report = helpers.call_method1("reporter", (progress, self.time(), until))?;
+        let report_ref = (!report.is_none()).then_some(&report);
+        let outcome = self.drive(py, target, report_ref);
+        helpers.call_method1("close", (report,))?;
+        outcome
+    }
+
+    /// Advances exactly ``n`` steps (default 1), with the interpreter released.
+    #[pyo3(signature = (n=1))]
+    fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
+        let target = Target::Steps(self.n_steps() + n);
+        self.drive(py, target, None)
+    }
+
+    /// Simulated time [s].
+    #[getter]
+    fn time(&self) -> f64 {
+        each!(&self.solver, s => s.time)
+    }
+
+    /// The last time step [s] (0 before the first step).
+    #[getter]
+    fn dt(&self) -> f64 {
+        each!(&self.solver, s => s.dt)
+    }
+
+    /// Steps taken so far.
+    #[getter]
+    fn n_steps(&self) -> u64 {
+        each!(&self.solver, s => s.counters.steps)
+    }
+
+    /// 2 or 3.
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.case().dimension
+    }
+
+    /// The case's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.case().name.clone()
+    }
+
+    /// Number of particles, fluid and wall.
+    #[getter]
+    fn n_particles(&self) -> usize {
+        each!(&self.solver, s => s.particles.len())
+    }
+
+    /// Number of fluid particles.
+    #[getter]
+    fn n_fluid(&self) -> usize {
+        each!(&self.solver, s => s.n_fluid())
+    }
+
+    /// Numerical sound speed c0 [m/s].
+    #[getter]
+    fn sound_speed(&self) -> f64 {
+        each!(&self.solver, s => s.physics().eos.c0)
+    }
+
+    /// Reference density ρ0 [kg/m³].
+    #[getter]
+    fn reference_density(&self) -> f64 {
+        each!(&self.solver, s => s.physics().eos.rho0)
+    }
+
+    /// Smoothing length h [m].
+    #[getter]
+    fn smoothing_length(&self) -> f64 {
+        self.case().h()
+    }
+
+    /// Initial particle spacing Δx [m].
+    #[getter]
+    fn spacing(&self) -> f64 {
+        self.case().dx()
+    }
+
+    /// Positions [m], float64 array (N, D), a copy.
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, &s.particles.x))
+    }
+
+    /// Velocities [m/s], float64 array (N, D), a copy. Walls are fixed (zero).
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, &s.particles.u))
+    }
+
+    /// Density [kg/m³], float64 array (N,), a copy; walls carry their extrapolated value.
+    #[getter]
+    fn density<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.fresh_pressure();
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.rho, |v| v))
+    }
+
+    /// Pressure [Pa], float64 array (N,), a copy: the EOS for fluid, the
+    /// extrapolation of Adami et al. (2012) for walls.
+    #[getter]
+    fn pressure<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.fresh_pressure();
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.p, |v| v))
+    }
+
+    /// Mass [kg] (per unit depth in 2D), float64 array (N,), a copy.
+    #[getter]
+    fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.mass, |v| v))
+    }
+
+    /// Particle kind, uint8 array (N,): 0 fluid (deltasph.FLUID), 1 wall (deltasph.WALL).
+    #[getter]
+    fn kind<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u8>> {
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.kind, |k| k as u8))
+    }
+
+    /// Energies of the fluid [J] (per unit depth in 2D): ``kinetic``, ``potential``,
+    /// ``internal`` (compressible, SCHEME.md §10), ``total`` (their sum) and
+    /// ``dissipated``: the energy taken out so far by viscosity, density diffusion and
+    /// the walls, -∫(P_V + P_D + P_W) dt, so that ``total + dissipated`` stays
+    /// constant; None unless the case sets ``diagnostics.energy_budget = true``.
+    fn energies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let (e, budget) = each!(&self.solver, s => (s.energies(), s.budget));
+        let dict = PyDict::new(py);
+        dict.set_item("kinetic", e.kinetic)?;
+        dict.set_item("potential", e.potential)?;
+        dict.set_item("internal", e.internal)?;
+        dict.set_item("total", e.total())?;
+        dict.set_item("dissipated", budget.map(|b| 0.0 - b.dissipated))?;
+        Ok(dict)
+    }
+
+    /// Pressure [Pa] interpolated (Shepard) from the fluid at ``points``: array-like
+    /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
+    /// fluid within the kernel support reads 0.
+    fn probe_pressure<'py>(
+        &mut self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.fresh_pressure();
+        each!(&self.solver, s => {
+            let points = arrays::points(points)?;
+            let values: Vec<f64> = points.iter().map(|x| s.probe_pressure(x)).collect();
+            Ok(PyArray1::from_vec(py, values))
+        })
+    }
+
+    /// Sets all velocities [m/s] from a float64 array (N, D) in id order (as
+    /// ``velocities`` returns it). Wall rows must be zero: walls are fixed.
+    fn set_velocities(&mut self, velocities: &Bound<'_, PyAny>) -> PyResult<()> {
+        each!(&mut self.solver, s => set_velocities(s, velocities))?;
+        self.pressure_fresh = true;
+        Ok(())
+    }
+
+    /// Sets all densities [kg/m³] from a positive float64 array (N,) in id order.
+    /// Wall rows are accepted but recomputed from the fluid (Adami extrapolation).
+    fn set_density(&mut self, density: &Bound<'_, PyAny>) -> PyResult<()> {
+        each!(&mut self.solver, s => set_density(s, density))?;
+        self.pressure_fresh = true;
+        Ok(())
+    }
+
+    /// Writes the state to ``path`` (HDF5, the layout of the command line's
+    /// snapshots) and an XDMF index beside it (``path`` with ``.xmf``) for ParaView.
+    /// Existing files are kept (OSError) unless ``overwrite``. Returns the index path.
+    #[pyo3(signature = (path, overwrite=false))]
+    fn write_snapshot(
+        &mut self,
+        py: Python<'_>,
+        path: PathBuf,
+        overwrite: bool,
+    ) -> PyResult<PathBuf> {
+        self.fresh_pressure();
+        each!(&self.solver, s => sph_core::output::write_indexed_snapshot(
+            &path,
+            &s.particles,
+            s.time,
+            s.counters.steps,
+            overwrite,
+        ))
+        .map_err(|e| to_py(py, e))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Simulation('{}', {}D, {} fluid + {} wall particles, t = {:.6} s, {} steps)",
+            self.name(),
+            self.dimension(),
+            self.n_fluid(),
+            self.n_particles() - self.n_fluid(),
+            self.time(),
+            self.n_steps()
+        )
+    }
+}

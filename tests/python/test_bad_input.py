@@ -1,0 +1,133 @@
+"""Bad input raises the right exception with the command line's one-line message,
+and never crashes the interpreter."""
+
+import numpy as np
+import pytest
+
+import deltasph as ds
+from conftest import example
+
+
+def test_unknown_key_is_a_key_error_naming_the_key():
+    config = example("hydrostatic_2d")
+    config["fluid"]["viscosity"] = 1e-3
+    with pytest.raises(ds.ConfigKeyError) as info:
+        ds.Simulation(config)
+    assert isinstance(info.value, KeyError) and isinstance(info.value, ValueError)
+    assert str(info.value).startswith("fluid.viscosity = 0.001: unknown field `viscosity`")
+
+
+def test_missing_key_names_it():
+    config = example("hydrostatic_2d")
+    del config["particles"]["spacing"]
+    with pytest.raises(KeyError, match=r"^particles.spacing = \(missing\): missing field"):
+        ds.Simulation(config)
+
+
+def test_negative_spacing_is_a_value_error():
+    with pytest.raises(ValueError) as info:
+        ds.Simulation(example("hydrostatic_2d", particles__spacing=-0.01))
+    assert type(info.value) is ds.ConfigError
+    assert str(info.value) == "particles.spacing = -0.01: expected a positive number"
+
+
+def test_same_message_as_toml(tmp_path):
+    text = (tmp_path / "c.toml")
+    src = (example.__globals__["EXAMPLES"] / "hydrostatic_2d.toml").read_text()
+    text.write_text(src.replace("spacing = 0.025", "spacing = -0.01"))
+    with pytest.raises(ds.ConfigError) as from_file:
+        ds.Simulation.from_toml(text)
+    with pytest.raises(ds.ConfigError) as from_dict:
+        ds.Simulation(example("hydrostatic_2d", particles__spacing=-0.01))
+    assert str(from_file.value) == str(from_dict.value)
+
+
+@pytest.mark.parametrize(
+    "key, value, fragment",
+    [
+        ("particles__spacing", "fine", "particles.spacing = \"fine\": invalid type"),
+        ("scheme__diffusion", "magic", "scheme.diffusion = \"magic\": unknown variant"),
+        ("fluid__gravity", [0.0, -9.81, 0.0], "fluid.gravity"),
+        ("particles__h_over_dx", float("nan"), "particles.h_over_dx = NaN"),
+        ("time__end", 1j, "time.end = 1j: expected a number"),
+    ],
+)
+def test_bad_values(key, value, fragment):
+    with pytest.raises(ds.ConfigError, match=None) as info:
+        ds.Simulation(example("hydrostatic_2d", **{key: value}))
+    assert fragment in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_numpy_values_are_accepted():
+    config = example("hydrostatic_2d")
+    config["fluid"]["gravity"] = np.array([0.0, -9.81])
+    config["particles"]["spacing"] = np.float64(0.025)
+    config["tank"][0]["layers"] = np.int64(3)
+    assert ds.Simulation(config).n_fluid == 80 * 40
+
+
+def test_config_must_be_a_dict():
+    with pytest.raises(TypeError, match="expected a dict"):
+        ds.Simulation("examples/hydrostatic_2d.toml")
+    with pytest.raises(ds.ConfigError, match="expected string keys"):
+        ds.Simulation({1: 2})
+
+
+def test_missing_file_and_bad_toml(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no such case file"):
+        ds.Simulation.from_toml(tmp_path / "absent.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("dimension = \n")
+    with pytest.raises(ds.ConfigError, match=r"bad.toml: TOML syntax at line 1, column"):
+        ds.Simulation.from_toml(bad)
+
+
+@pytest.fixture(scope="module")
+def sim():
+    return ds.Simulation(example("hydrostatic_2d", particles__spacing=0.05))
+
+
+def test_set_velocities_checks(sim):
+    n = sim.n_particles
+    with pytest.raises(ValueError, match=rf"shape \(3, 2\), expected \({n}, 2\)"):
+        sim.set_velocities(np.zeros((3, 2)))
+    with pytest.raises(ValueError, match=rf"expected \({n}, 2\)"):
+        sim.set_velocities(np.zeros((n, 3)))
+    with pytest.raises(TypeError, match="dtype float32, expected float64"):
+        sim.set_velocities(np.zeros((n, 2), dtype=np.float32))
+    with pytest.raises(TypeError, match="got list, expected a numpy.ndarray"):
+        sim.set_velocities([[0.0, 0.0]] * n)
+    u = np.zeros((n, 2))
+    u[5, 1] = np.nan
+    with pytest.raises(ValueError, match="row 5 holds a non-finite value"):
+        sim.set_velocities(u)
+    wall = int(np.flatnonzero(sim.kind == 1)[0])
+    u = np.zeros((n, 2))
+    u[wall] = 1.0
+    with pytest.raises(ValueError, match=f"row {wall} is a wall particle"):
+        sim.set_velocities(u)
+    # Nothing was changed by the refused calls.
+    assert np.all(sim.velocities == 0.0)
+
+
+def test_set_density_checks(sim):
+    rho = sim.density
+    rho[0] = -1.0
+    with pytest.raises(ValueError, match="row 0 = -1, expected a positive density"):
+        sim.set_density(rho)
+    with pytest.raises(TypeError, match="dtype int64"):
+        sim.set_density(np.ones(sim.n_particles, dtype=np.int64))
+
+
+def test_probe_and_run_checks(sim):
+    with pytest.raises(ValueError, match=r"expected \(M, 2\)"):
+        sim.probe_pressure([[1.0, 2.0, 3.0]])
+    with pytest.raises(ValueError, match="not an array of numbers"):
+        sim.probe_pressure([["a", "b"]])
+    with pytest.raises(ValueError, match="until = NaN: expected a finite time"):
+        sim.run(until=float("nan"))
+    with pytest.raises(TypeError, match="progress = 3"):
+        sim.run(until=0.0, progress=3)
+    with pytest.raises(OverflowError):
+        sim.step(-1)

@@ -98,6 +98,18 @@ pub struct BoxConfig {
     /// (fluid blocks only; default true).
     #[serde(default)]
     pub hydrostatic: Option<bool>,
+    /// Fill the whole box, or only the ellipse (ellipsoid) inscribed in it (fluid
+    /// blocks only; default box).
+    #[serde(default)]
+    pub shape: Option<Shape>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shape {
+    Box,
+    /// The ellipse (3D: ellipsoid) inscribed in the box: a disc when the box is square.
+    Ellipsoid,
 }
 
 /// A tank: wall layers around the inner box `[lo, hi]`, except on the open faces.
@@ -133,6 +145,9 @@ pub enum InitialField {
     /// 2D Taylor-Green vortex on a periodic square of side `wavelength`:
     /// `u = U(-cos kx sin ky, sin kx cos ky)`, `p = -ρ0 U²/4 (cos 2kx + cos 2ky)`, `k = 2π/L`.
     TaylorGreen { amplitude: f64, wavelength: f64 },
+    /// 2D elliptic drop (Monaghan 1994) of a disc of `radius` R centred at the origin:
+    /// `u = (-A0 x, A0 y)` with `A0 = strain_rate`, `p = ρ0 A0² (R² - x² - y²)/2`.
+    EllipticDrop { strain_rate: f64, radius: f64 },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -388,11 +403,11 @@ impl Case {
         }
         for (k, b) in self.wall.iter().enumerate() {
             check_box(&format!("wall[{k}]"), &b.lo, &b.hi, d)?;
-            if b.velocity.is_some() || b.hydrostatic.is_some() {
+            if b.velocity.is_some() || b.hydrostatic.is_some() || b.shape.is_some() {
                 return Err(SphError::invalid(
                     format!("wall[{k}]"),
-                    "velocity/hydrostatic",
-                    "only lo and hi (walls are fixed)",
+                    "velocity/hydrostatic/shape",
+                    "only lo and hi (walls are fixed boxes)",
                 ));
             }
         }
@@ -426,20 +441,24 @@ impl Case {
                 ));
             }
         }
-        if let Some(InitialField::TaylorGreen {
-            amplitude,
-            wavelength,
-        }) = &self.initial
-        {
-            if d != 2 {
-                return Err(SphError::invalid(
-                    "initial.type",
-                    "\"taylor_green\"",
-                    "dimension = 2",
-                ));
+        match &self.initial {
+            Some(InitialField::TaylorGreen {
+                amplitude,
+                wavelength,
+            }) => {
+                only_2d(d, "taylor_green")?;
+                finite("initial.amplitude", *amplitude)?;
+                positive("initial.wavelength", *wavelength)?;
             }
-            finite("initial.amplitude", *amplitude)?;
-            positive("initial.wavelength", *wavelength)?;
+            Some(InitialField::EllipticDrop {
+                strain_rate,
+                radius,
+            }) => {
+                only_2d(d, "elliptic_drop")?;
+                finite("initial.strain_rate", *strain_rate)?;
+                positive("initial.radius", *radius)?;
+            }
+            None => {}
         }
         self.validate_scheme()?;
         positive("time.end", self.time.end)?;
@@ -619,6 +638,18 @@ fn schema_error(root: &toml::Value, path: String, inner: String) -> SphError {
         key: path,
         value,
         message,
+    }
+}
+
+fn only_2d(d: usize, field: &str) -> Result<()> {
+    if d == 2 {
+        Ok(())
+    } else {
+        Err(SphError::invalid(
+            "initial.type",
+            format!("\"{field}\""),
+            "dimension = 2",
+        ))
     }
 }
 

@@ -2,7 +2,7 @@
 //! wall boxes as layers of fixed dummy particles, the initial density (hydrostatic
 //! or from an analytic field), masses `m_i = ρ_i V0`, and the sound speed.
 
-use crate::case::{face_axis, Case, InitialField};
+use crate::case::{face_axis, BoxConfig, Case, InitialField, Shape};
 use crate::domain::Domain;
 use crate::eos::LinearEos;
 use crate::error::{Result, SphError};
@@ -53,7 +53,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
 
     let mut fluid: Vec<(Vector<D>, Vector<D>, usize)> = Vec::new();
     for (k, b) in case.fluid_block.iter().enumerate() {
-        let points = lattice(&vector(&b.lo), &vector(&b.hi), dx);
+        let points = block_points::<D>(b, dx);
         if points.is_empty() {
             return Err(SphError::invalid(
                 format!("fluid_block[{k}]"),
@@ -86,16 +86,26 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
                 .fold(f64::MIN, f64::max);
             p = rho0 * (top + gravity.dot(&x));
         }
-        if let Some(InitialField::TaylorGreen {
-            amplitude,
-            wavelength,
-        }) = &case.initial
-        {
-            let kx = 2.0 * PI / wavelength;
-            let (a, b2) = (kx * x[0], kx * x[1]);
-            u[0] = -amplitude * a.cos() * b2.sin();
-            u[1] = amplitude * a.sin() * b2.cos();
-            p = -rho0 * amplitude * amplitude / 4.0 * ((2.0 * a).cos() + (2.0 * b2).cos());
+        match case.initial {
+            Some(InitialField::TaylorGreen {
+                amplitude,
+                wavelength,
+            }) => {
+                let kx = 2.0 * PI / wavelength;
+                let (a, b2) = (kx * x[0], kx * x[1]);
+                u[0] = -amplitude * a.cos() * b2.sin();
+                u[1] = amplitude * a.sin() * b2.cos();
+                p = -rho0 * amplitude * amplitude / 4.0 * ((2.0 * a).cos() + (2.0 * b2).cos());
+            }
+            Some(InitialField::EllipticDrop {
+                strain_rate,
+                radius,
+            }) => {
+                u[0] = -strain_rate * x[0];
+                u[1] = strain_rate * x[1];
+                p = 0.5 * rho0 * strain_rate.powi(2) * (radius.powi(2) - x.norm_squared());
+            }
+            None => {}
         }
         let rho = eos.density(p + eos.background);
         particles.push(Kind::Fluid, x, u, rho, rho * volume);
@@ -112,6 +122,18 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         eos,
         gravity,
     })
+}
+
+/// The lattice points of a fluid block: the whole box, or those inside the inscribed
+/// ellipse (ellipsoid).
+fn block_points<const D: usize>(b: &BoxConfig, dx: f64) -> Vec<Vector<D>> {
+    let (lo, hi): (Vector<D>, Vector<D>) = (vector(&b.lo), vector(&b.hi));
+    let mut points = lattice(&lo, &hi, dx);
+    if b.shape == Some(Shape::Ellipsoid) {
+        let (centre, half) = ((lo + hi) / 2.0, (hi - lo) / 2.0);
+        points.retain(|x| (x - centre).component_div(&half).norm_squared() < 1.0);
+    }
+    points
 }
 
 fn corners<const D: usize>(lo: &Vector<D>, hi: &Vector<D>) -> Vec<Vector<D>> {

@@ -1,0 +1,153 @@
+//! The fast subset of the validation suite (docs/validation): the cases of
+//! `examples/validation/` at coarse resolution, each against its analytic reference.
+//! Tolerances come from the measured errors at this and the next finer resolution
+//! (quoted at each assertion); the full resolution studies are `examples/validation/run_all.py`.
+
+use deltasph_suite::{example_case, read_csv, refdata};
+use sph_core::{Kind, Simulation, Vector};
+
+fn run_to<const D: usize>(sim: &mut Simulation<D>, t: f64) {
+    while sim.time < t * (1.0 - 1e-12) {
+        sim.step_until(t).unwrap();
+    }
+}
+
+/// Elliptic drop (Monaghan 1994): semi-axes from the second moments of the particle
+/// cloud, `a = R sqrt(<x²>(t)/<x²>(0))`, exact for any cloud carried by a linear
+/// velocity field, against the ODE solution of the reference CSV at A0 t = 0.75.
+#[test]
+fn elliptic_drop_follows_the_exact_ellipse() {
+    let case = example_case("validation/elliptic_drop.toml", &[]);
+    let mut sim = Simulation::<2>::new(case).unwrap();
+    let moments = |sim: &Simulation<2>| {
+        let p = &sim.particles;
+        let n = p.len() as f64;
+        let m: Vector<2> = p.x.iter().map(|x| x.component_mul(x)).sum();
+        m / n
+    };
+    let (m0, e0) = (moments(&sim), sim.energies().kinetic);
+    run_to(&mut sim, 0.0075);
+    let m = moments(&sim);
+    let (_, rows) = read_csv(&refdata("elliptic_drop_exact.csv"));
+    let exact = rows.iter().find(|r| (r[0] - 0.75).abs() < 1e-9).unwrap();
+    let a = (m[0] / m0[0]).sqrt();
+    let b = (m[1] / m0[1]).sqrt();
+    let ek = sim.energies().kinetic / e0 - 1.0;
+    println!(
+        "a = {a:.4} (exact {:.4}), b = {b:.4} (exact {:.4}), E_k change {ek:+.4}",
+        exact[1], exact[2]
+    );
+    // Measured at R/Δx = 25 and 50: b within 0.87% and 0.82%. The x semi-axis is
+    // 9.9% and 8.9% too large: along x the particles are packed at ~Δx/2 and along y
+    // stretched to ~2Δx at this time, an anisotropy that does not shrink with Δx at
+    // fixed h/Δx, so neither error converges quickly; the bounds leave 1% headroom.
+    assert!((b / exact[2] - 1.0).abs() < 0.02, "b = {b}");
+    assert!((a / exact[1] - 1.0).abs() < 0.11, "a = {a}");
+    // E_k is an exact invariant; measured changes 9e-5 and 1.3e-4.
+    assert!(ek.abs() < 1e-3, "E_k change {ek}");
+}
+
+/// Start-up Poiseuille flow (Morris et al. 1997), the series solution with the signs
+/// corrected as in `../shared/refdata/README.md` §7c.
+fn poiseuille_exact(y: f64, t: f64) -> f64 {
+    let (l, nu, f) = (1e-3, 1e-6, 2e-4);
+    let mut u = f / (2.0 * nu) * y * (l - y);
+    for n in 0..50 {
+        let k = (2 * n + 1) as f64;
+        let pi = std::f64::consts::PI;
+        u -= 4.0 * f * l * l / (nu * pi.powi(3) * k.powi(3))
+            * (k * pi * y / l).sin()
+            * (-k * k * pi * pi * nu * t / (l * l)).exp();
+    }
+    u
+}
+
+/// RMS error of u_x over the fluid against the series, relative to the steady centre speed.
+fn poiseuille_error<const D: usize>(name: &str, spacing: f64, t: f64) -> f64 {
+    let case = example_case(name, &[&format!("particles.spacing = {spacing}")]);
+    let mut sim = Simulation::<D>::new(case).unwrap();
+    run_to(&mut sim, t);
+    let p = &sim.particles;
+    let (sum, n) = (0..p.len())
+        .filter(|&i| p.kind[i] == Kind::Fluid)
+        .map(|i| (p.u[i][0] - poiseuille_exact(p.x[i][1], t)).powi(2))
+        .fold((0.0, 0), |(s, n), e| (s + e, n + 1));
+    (sum / n as f64).sqrt() / 2.5e-5
+}
+
+#[test]
+fn poiseuille_2d_matches_the_series_solution() {
+    // ν t/L² = 0.1125 (Morris et al.'s first profile). Measured at L/Δx = 10, 20, 40:
+    // 1.45%, 1.02%, 1.05%. With Wendland C2 at h/Δx = 1.33 the same run is 17% off:
+    // the physical viscous term needs h/Δx = 2 (see docs/validation).
+    let e = poiseuille_error::<2>("validation/poiseuille_2d.toml", 1e-4, 0.1125);
+    println!("2D Poiseuille, L/Δx = 10: RMS error {e:.4} of u_max");
+    assert!(e < 0.025, "error {e}");
+}
+
+#[test]
+fn poiseuille_3d_confirms_the_viscous_constant() {
+    // K = 2(n+2)μ with n = 3; the 2D constant 2(2+2)μ would make ν 20% too small and
+    // the profile about 15% off at this time. Measured at L/Δx = 15: 0.62%.
+    let e = poiseuille_error::<3>("validation/poiseuille_3d.toml", 1e-3 / 15.0, 0.1125);
+    println!("3D Poiseuille, L/Δx = 15: RMS error {e:.4} of u_max");
+    assert!(e < 0.025, "error {e}");
+}
+
+struct Impact {
+    /// Mean contact-point pressure over 0.2 to 0.8 of the acoustic plateau, / ρ0 c0 U.
+    plateau: f64,
+    /// RMS of p_i minus its Shepard-smoothed value over the patch interiors, / ρ0 c0 U.
+    noise: f64,
+}
+
+fn patch_impact(diffusion: &str) -> Impact {
+    let case = example_case(
+        "validation/patch_impact.toml",
+        &[&format!("scheme.diffusion = \"{diffusion}\"")],
+    );
+    let mut sim = Simulation::<2>::new(case).unwrap();
+    let scale = 1000.0 * 20.0 * 1.0;
+    let (release, origin) = (0.025, Vector::<2>::zeros());
+    let (mut sum, mut n) = (0.0, 0);
+    while sim.time < 0.05 * (1.0 - 1e-12) {
+        sim.step().unwrap();
+        if (0.2 * release..0.8 * release).contains(&sim.time) {
+            sim.sync_pressure();
+            sum += sim.probe_pressure(&origin);
+            n += 1;
+        }
+    }
+    sim.sync_pressure();
+    let p = &sim.particles;
+    let inner: Vec<usize> = (0..p.len())
+        .filter(|&i| p.x[i].iter().all(|c| c.abs() < 0.45))
+        .collect();
+    let noise = inner
+        .iter()
+        .map(|&i| (p.p[i] - sim.probe_pressure(&p.x[i])).powi(2))
+        .sum::<f64>()
+        / inner.len() as f64;
+    Impact {
+        plateau: sum / n as f64 / scale,
+        noise: noise.sqrt() / scale,
+    }
+}
+
+#[test]
+fn patch_impact_reaches_the_acoustic_pressure_and_delta_sph_removes_the_noise() {
+    let delta = patch_impact("delta_sph");
+    let standard = patch_impact("none");
+    println!(
+        "δ-SPH: plateau {:.4}, noise {:.4}; standard SPH: plateau {:.4}, noise {:.4}",
+        delta.plateau, delta.noise, standard.plateau, standard.noise
+    );
+    // Water hammer p = ρ0 c0 U (U/c0 = 0.05). Measured plateau at h/Δx = 50 and 100:
+    // 0.994, 1.019 (δ-SPH).
+    assert!((delta.plateau - 1.0).abs() < 0.05);
+    assert!((standard.plateau - 1.0).abs() < 0.05);
+    // At t = 2(h/2)/c0 standard SPH carries checkerboard noise; measured 0.082 against
+    // 0.019 for δ-SPH here, 0.186 against 0.025 at twice the resolution.
+    assert!(standard.noise > 3.0 * delta.noise);
+    assert!(delta.noise < 0.03);
+}

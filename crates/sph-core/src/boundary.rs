@@ -4,8 +4,9 @@
 //! `p_w = [Σ_f p_f W_wf + (g - a_w)·Σ_f ρ_f (x_w - x_f) W_wf] / Σ_f W_wf`,
 //! `ρ_w = ρ0 + p_w/c0²`, and for the viscous term the wall velocity seen by the
 //! fluid is `2 u_w - ũ_w` with `ũ_w = Σ_f u_f W_wf / Σ_f W_wf` (no-slip). Free-slip
-//! walls drop the wall-fluid viscous interaction instead. Walls are fixed here
-//! (`u_w = a_w = 0`); a wall particle with no fluid neighbour takes p = 0, ρ = ρ0.
+//! walls drop the wall-fluid viscous interaction instead. Walls do not accelerate
+//! (`a_w = 0`): they are at rest or slide in their own plane with a constant `u_w`
+//! (a lid); a wall particle with no fluid neighbour takes p = 0, ρ = ρ0, `u_w`.
 
 use crate::domain::Domain;
 use crate::eos::LinearEos;
@@ -40,10 +41,11 @@ pub fn extrapolate_walls<const D: usize, K: Kernel>(
                 srx += x_wf * (state.rho[f] * w);
                 su += state.u[f] * w;
             }
+            let uw = state.u[i];
             if sw > 0.0 {
-                (i, (sp + gravity.dot(&srx)) / sw, -su / sw)
+                (i, (sp + gravity.dot(&srx)) / sw, uw * 2.0 - su / sw)
             } else {
-                (i, 0.0, Vector::zeros())
+                (i, 0.0, uw)
             }
         })
         .collect();

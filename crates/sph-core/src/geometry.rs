@@ -111,8 +111,8 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         particles.push(Kind::Fluid, x, u, rho, rho * volume);
     }
 
-    for x in wall_points::<D>(case) {
-        particles.push(Kind::Wall, x, Vector::zeros(), rho0, rho0 * volume);
+    for (x, u) in wall_points::<D>(case) {
+        particles.push(Kind::Wall, x, u, rho0, rho0 * volume);
     }
     check_overlap(&particles, dx)?;
     let domain = domain_of(case, &particles)?;
@@ -186,7 +186,8 @@ fn sound_speed<const D: usize>(
     }
 }
 
-fn wall_points<const D: usize>(case: &Case) -> Vec<Vector<D>> {
+/// Wall particles with their (fixed or sliding-lid) velocities.
+fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector<D>)> {
     let dx = case.dx();
     let mut points = Vec::new();
     for t in &case.tank {
@@ -200,6 +201,11 @@ fn wall_points<const D: usize>(case: &Case) -> Vec<Vector<D>> {
             .iter()
             .filter_map(|f| face_axis(f, D))
             .collect();
+        let lid: Vector<D> = t
+            .lid_velocity
+            .as_deref()
+            .map(vector)
+            .unwrap_or_else(Vector::zeros);
         points.extend(
             lattice(&(lo - pad), &(hi + pad), dx)
                 .into_iter()
@@ -209,11 +215,16 @@ fn wall_points<const D: usize>(case: &Case) -> Vec<Vector<D>> {
                         open.iter()
                             .any(|&(d, s)| if s > 0 { x[d] > hi[d] } else { x[d] < lo[d] });
                     outside && !beyond_open
+                })
+                .map(|x| {
+                    let above = x[D - 1] > hi[D - 1];
+                    (x, if above { lid } else { Vector::zeros() })
                 }),
         );
     }
     for b in &case.wall {
-        points.extend(lattice(&vector(&b.lo), &vector(&b.hi), dx));
+        let box_points = lattice(&vector(&b.lo), &vector(&b.hi), dx);
+        points.extend(box_points.into_iter().map(|x| (x, Vector::zeros())));
     }
     points
 }

@@ -17,7 +17,7 @@
 use crate::domain::Domain;
 use crate::equations::{Model, Rates};
 use crate::neighbours::NeighbourList;
-use crate::particles::{Particles, Vector};
+use crate::particles::{Kind, Particles, Vector};
 use rayon::prelude::*;
 
 /// What a step needs besides the particles.
@@ -42,6 +42,17 @@ struct Saved<const D: usize> {
     x: Vec<Vector<D>>,
     u: Vec<Vector<D>>,
     rho: Vec<f64>,
+}
+
+/// The velocity that carries a particle: its own for fluid, zero for walls, which are
+/// at rest or slide in their own plane (a lid) and so keep their places.
+#[inline]
+fn transport<const D: usize>(kind: Kind, u: Vector<D>) -> Vector<D> {
+    if kind == Kind::Fluid {
+        u
+    } else {
+        Vector::zeros()
+    }
 }
 
 impl<const D: usize> Saved<D> {
@@ -70,6 +81,7 @@ impl<const D: usize> Rk4<D> {
     fn stage(&mut self, p: &mut Particles<D>, weight: f64, c: f64) {
         let w0 = &self.w0;
         let r = &self.rates;
+        let kind = &p.kind;
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())
             .zip(p.rho.par_iter_mut())
@@ -78,7 +90,7 @@ impl<const D: usize> Rk4<D> {
             .zip(self.acc_rho.par_iter_mut())
             .enumerate()
             .for_each(|(i, (((((x, u), rho), ax), au), ar))| {
-                let uk = *u;
+                let uk = transport(kind[i], *u);
                 *ax += uk * weight;
                 *au += r.du[i] * weight;
                 *ar += r.drho[i] * weight;
@@ -119,7 +131,7 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
         self.stage(p, 2.0, dt);
         cx.model
             .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
-        let (w0, r) = (&self.w0, &self.rates);
+        let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         let (ax, au, ar, d0) = (&self.acc_x, &self.acc_u, &self.acc_rho, &self.diff0);
         let s = dt / 6.0;
         p.x.par_iter_mut()
@@ -127,7 +139,7 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
             .zip(p.rho.par_iter_mut())
             .enumerate()
             .for_each(|(i, ((x, u), rho))| {
-                *x = w0.x[i] + (ax[i] + *u) * s;
+                *x = w0.x[i] + (ax[i] + transport(kind[i], *u)) * s;
                 *rho = w0.rho[i] + (ar[i] + r.drho[i]) * s + d0[i] * dt;
                 *u = w0.u[i] + (au[i] + r.du[i]) * s;
             });
@@ -155,19 +167,19 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
     fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
         self.w0.save(p);
         let half = 0.5 * dt;
-        let r = &self.rates;
+        let (r, kind) = (&self.rates, &p.kind);
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())
             .zip(p.rho.par_iter_mut())
             .enumerate()
             .for_each(|(i, ((x, u), rho))| {
-                *x += *u * half;
+                *x += transport(kind[i], *u) * half;
                 *u += r.du[i] * half;
                 *rho += (r.drho[i] + r.drho_diff[i]) * half;
             });
         cx.model
             .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
-        let (w0, r) = (&self.w0, &self.rates);
+        let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())
             .zip(p.rho.par_iter_mut())
@@ -175,7 +187,7 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
             .for_each(|(i, ((x, u), rho))| {
                 *u = w0.u[i] + r.du[i] * dt;
                 *rho = w0.rho[i] + (r.drho[i] + r.drho_diff[i]) * dt;
-                *x = w0.x[i] + (w0.u[i] + *u) * half;
+                *x = w0.x[i] + (transport(kind[i], w0.u[i]) + transport(kind[i], *u)) * half;
             });
     }
 }

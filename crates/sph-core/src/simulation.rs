@@ -62,7 +62,7 @@ impl<const D: usize> Simulation<D> {
         let k = viscosity_k(&case, &physics).unwrap_or(0.0);
         let control = TimeStepControl {
             cfl: case.scheme.cfl(),
-            viscous_cfl: case.scheme.viscous_cfl,
+            viscous_cfl: case.scheme.viscous_cfl(),
             force_cfl: case.scheme.force_cfl,
             h: case.h(),
             c0: setup.eos.c0,

@@ -1,0 +1,285 @@
+"""The validation cases: how each is set up at a given resolution and scheme variant,
+how it is run, and how its error is measured against its reference.
+
+Every case is a TOML file beside this module; a run overrides the particle spacing and
+the scheme (diffusion, integrator, Courant number). `measure` drives the simulation to
+the case's comparison time and returns the error (the number plotted) and extra figures.
+References: analytic solutions, or `../shared/refdata/` (see its README for grades).
+"""
+
+import math
+import pathlib
+import tomllib
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+REFDATA = HERE.parents[1].parent / "shared" / "refdata"
+
+
+@dataclass
+class Case:
+    name: str
+    title: str
+    toml: str
+    #: particles across the reference length, per mode
+    resolutions: dict
+    #: the reference length over which `resolutions` count particles [m]
+    length: float
+    error_label: str
+    measure: Callable
+    #: variants per mode: (diffusion label, integrator label)
+    variants: dict = field(default_factory=dict)
+    #: extra overrides (dotted keys) applied to every run
+    fixed: dict = field(default_factory=dict)
+
+    def config(self, n, diffusion, integrator):
+        with open(HERE / self.toml, "rb") as f:
+            config = tomllib.load(f)
+        scheme = config.setdefault("scheme", {})
+        scheme["diffusion"] = DIFFUSIONS[diffusion]
+        scheme["integrator"], scheme["cfl"] = INTEGRATORS[integrator]
+        config["particles"]["spacing"] = self.length / n
+        for dotted, value in self.fixed.items():
+            table, key = dotted.split(".")
+            config.setdefault(table, {})[key] = value
+        return config
+
+
+DIFFUSIONS = {
+    "SPH": "none",
+    "MC": "molteni_colagrossi",
+    "Ferrari": "ferrari",
+    "δ-SPH": "delta_sph",
+}
+#: integrator and its largest stable Courant number (README: stability findings)
+INTEGRATORS = {"RK4": ("rk4", 1.5), "SE2": ("symplectic", 0.15)}
+QUICK = [("δ-SPH", "RK4"), ("δ-SPH", "SE2"), ("MC", "RK4"), ("SPH", "RK4")]
+FULL = [(d, i) for d in DIFFUSIONS for i in INTEGRATORS]
+
+
+def fluid(sim):
+    return sim.kind == 0
+
+
+# 1. Hydrostatic tank -----------------------------------------------------------------
+
+def hydrostatic(sim):
+    """p against ρ0 g (H - y) at t·sqrt(g/H) = 20: L2 and max over the fluid, L2 in the top 3Δx."""
+    rho0, g, depth = 1000.0, 9.81, 1.0
+    sim.run(until=20.0 * math.sqrt(depth / g))
+    f = fluid(sim)
+    y, p = sim.positions[f, 1], sim.pressure[f]
+    err = (p - rho0 * g * (depth - y)) / (rho0 * g * depth)
+    top = y > depth - 3.0 * sim.spacing
+    return {
+        "error": float(np.sqrt(np.mean(err**2))),
+        "max_error": float(np.max(np.abs(err))),
+        "top_error": float(np.sqrt(np.mean(err[top] ** 2))),
+        "max_speed": float(np.max(np.linalg.norm(sim.velocities[f], axis=1))),
+    }
+
+
+# 2. Dam break, δ-SPH benchmark: P1 against Buchner (2002) -----------------------------
+
+def buchner():
+    data = np.loadtxt(REFDATA / "dambreak2d_buchner2002_P1.csv", delimiter=",",
+                      comments="#", skiprows=3)
+    return data[:, 0], data[:, 1]
+
+
+def dam_break(sim):
+    """P1 signal (t·sqrt(g/H), p/ρ0gH) to t* = 7; errors against Buchner's plateau and rise."""
+    H, g, rho0 = 0.6, 9.81, 1000.0
+    t_ref = math.sqrt(H / g)
+    times = np.arange(0.01, 7.0 + 1e-9, 0.01)
+    signal = []
+    for t_star in times:
+        sim.run(until=t_star * t_ref)
+        signal.append(sim.probe_pressure([3.2196, 0.16])[0] / (rho0 * g * H))
+    signal = np.array(signal)
+    plateau = float(np.mean(signal[(times >= 3.3) & (times <= 5.2)]))
+    rise = float(times[np.argmax(signal > 0.1)])
+    t_exp, p_exp = buchner()
+    exp_plateau = float(np.mean(p_exp[(t_exp >= 3.3) & (t_exp <= 5.2)]))
+    return {
+        "error": abs(plateau - exp_plateau) / exp_plateau,
+        "plateau": plateau,
+        "experiment_plateau": exp_plateau,
+        "rise_time": rise,
+        "signal": (times, signal),
+    }
+
+
+# 2b. Dam break, Martin & Moyce column: surge front ------------------------------------------
+
+def surge_front(sim):
+    """Front Z = x/a against T = t sqrt(2g/a), RMS over the MM (both columns) and KO points
+    with T in [0.5, 2.5], after the time shift τ in [0, 0.5] that fits best (the
+    experiments' gate release is not instantaneous; τ is reported; the SPH front leads)."""
+    a = 0.1
+    scale = math.sqrt(2 * 9.81 / a)
+    t_sph, z_sph = [0.0], [1.0]
+    while sim.time * scale < 3.0:
+        sim.step()
+        t_sph.append(sim.time * scale)
+        z_sph.append(sim.positions[fluid(sim), 0].max() / a)
+    mm = np.loadtxt(REFDATA / "dambreak2d_martin_moyce_1952_surge_front.csv", delimiter=",",
+                    comments="#", skiprows=3)[:, 1:]
+    ko = np.loadtxt(REFDATA / "dambreak2d_koshizuka_oka_1996_surge_front.csv", delimiter=",",
+                    comments="#", skiprows=3)
+    points = np.vstack([mm, ko])
+    points = points[(points[:, 0] >= 0.5) & (points[:, 0] <= 2.5)]
+    fits = []
+    for tau in np.arange(0.0, 0.501, 0.01):
+        z = np.interp(points[:, 0] - tau, t_sph, z_sph)
+        fits.append((float(np.sqrt(np.mean((z - points[:, 1]) ** 2))), float(tau)))
+    rms, tau = min(fits)
+    return {"error": rms, "shift": tau, "error_without_shift": fits[0][0]}
+
+
+# 3. Elliptic drop ---------------------------------------------------------------------
+
+def elliptic_drop(sim):
+    """Semi-axes from second moments at A0 t = 0.75 against the ODE (refdata CSV)."""
+    ref = np.loadtxt(REFDATA / "elliptic_drop_exact.csv", delimiter=",", comments="#",
+                     skiprows=2)
+    exact = ref[np.argmin(np.abs(ref[:, 0] - 0.75))]
+    m0, e0 = np.mean(sim.positions**2, axis=0), sim.energies()["kinetic"]
+    sim.run(until=0.0075)
+    a, b = np.sqrt(np.mean(sim.positions**2, axis=0) / m0)
+    return {
+        "error": abs(b / exact[2] - 1.0),
+        "a_error": abs(a / exact[1] - 1.0),
+        "kinetic_energy_change": abs(sim.energies()["kinetic"] / e0 - 1.0),
+    }
+
+
+# 4. Taylor-Green vortex -------------------------------------------------------------------
+
+def taylor_green(sim, nu, until=1.0):
+    """L2 velocity error at t against the analytic field, relative to U e^{bt}; E_k decay error."""
+    k = 2.0 * math.pi
+    decay = math.exp(-8.0 * math.pi**2 * nu * until)
+    e0 = sim.energies()["kinetic"]
+    sim.run(until=until)
+    x, u = sim.positions, sim.velocities
+    exact = decay * np.column_stack([-np.cos(k * x[:, 0]) * np.sin(k * x[:, 1]),
+                                     np.sin(k * x[:, 0]) * np.cos(k * x[:, 1])])
+    err = np.sqrt(np.mean(np.sum((u - exact) ** 2, axis=1))) / decay
+    return {
+        "error": float(err),
+        "energy_decay_error": abs(sim.energies()["kinetic"] / e0 / decay**2 - 1.0),
+    }
+
+
+# 5. Impact of two patches -------------------------------------------------------------------
+
+def patch_impact(sim):
+    """Contact-point pressure on the acoustic plateau against ρ0 c0 U; noise at 2 (h/2)/c0."""
+    scale, release = 1000.0 * 20.0 * 1.0, 0.025
+    plateau = []
+    while sim.time < 0.05 * (1 - 1e-12):
+        sim.step()
+        if 0.2 * release <= sim.time < 0.8 * release:
+            plateau.append(sim.probe_pressure([0.0, 0.0])[0])
+    x, p = sim.positions, sim.pressure
+    inner = np.all(np.abs(x) < 0.45, axis=1)
+    noise = np.sqrt(np.mean((p[inner] - sim.probe_pressure(x[inner])) ** 2)) / scale
+    peak = float(np.mean(plateau)) / scale
+    return {"error": abs(peak - 1.0), "plateau": peak, "noise": float(noise)}
+
+
+# 6. Poiseuille flow ---------------------------------------------------------------------------
+
+def poiseuille_exact(y, t, L=1e-3, nu=1e-6, F=2e-4):
+    """Morris et al. (1997), signs corrected (refdata README §7c)."""
+    u = F / (2 * nu) * y * (L - y)
+    for n in range(50):
+        k = 2 * n + 1
+        u = u - 4 * F * L**2 / (nu * math.pi**3 * k**3) * np.sin(k * math.pi * y / L) \
+            * np.exp(-(k**2) * math.pi**2 * nu * t / L**2)
+    return u
+
+
+def poiseuille(sim, until):
+    """RMS of u_x against the series at t (ν t/L² = t here), relative to F L²/(8ν)."""
+    sim.run(until=until)
+    f = fluid(sim)
+    y, u = sim.positions[f, 1], sim.velocities[f, 0]
+    return {"error": float(np.sqrt(np.mean((u - poiseuille_exact(y, until)) ** 2)) / 2.5e-5)}
+
+
+# 7. Lid-driven cavity -------------------------------------------------------------------------
+
+def ghia(name):
+    return np.loadtxt(REFDATA / name, delimiter=",", comments="#", skiprows=3)
+
+
+def velocity_at(sim, points):
+    """Shepard-interpolated fluid velocity at points (Wendland C2 weights over 2h)."""
+    f = fluid(sim)
+    x, u, h = sim.positions[f], sim.velocities[f], sim.smoothing_length
+    out = []
+    for p in points:
+        q = np.linalg.norm(x - p, axis=1) / h
+        w = np.where(q < 2.0, (1.0 - q / 2.0) ** 4 * (2.0 * q + 1.0), 0.0)
+        out.append(w @ u / w.sum())
+    return np.array(out)
+
+
+def cavity(sim, until=20.0):
+    """Centre-line profiles at t U/L = 20 against Ghia et al. (1982), Re = 100: RMS of u on
+    x = 0.5 and of v on y = 0.5 over the tabulated interior points."""
+    sim.run(until=until)
+    gu = ghia("lid_driven_cavity_ghia1982_u_on_vertical_centreline.csv")
+    gv = ghia("lid_driven_cavity_ghia1982_v_on_horizontal_centreline.csv")
+    gu, gv = gu[(gu[:, 0] > 0) & (gu[:, 0] < 1)], gv[(gv[:, 0] > 0) & (gv[:, 0] < 1)]
+    u = velocity_at(sim, np.column_stack([np.full(len(gu), 0.5), gu[:, 0]]))[:, 0]
+    v = velocity_at(sim, np.column_stack([gv[:, 0], np.full(len(gv), 0.5)]))[:, 1]
+    eu = float(np.sqrt(np.mean((u - gu[:, 1]) ** 2)))
+    ev = float(np.sqrt(np.mean((v - gv[:, 1]) ** 2)))
+    return {"error": max(eu, ev), "u_error": eu, "v_error": ev}
+
+
+RK4_ONLY = {"quick": [("δ-SPH", "RK4"), ("MC", "RK4"), ("SPH", "RK4")], "full": FULL}
+VISCOUS = {"quick": [("δ-SPH", "RK4"), ("δ-SPH", "SE2"), ("MC", "RK4"), ("SPH", "RK4")],
+           "full": FULL}
+ALL = {"quick": QUICK, "full": FULL}
+
+CASES = [
+    Case("hydrostatic", "Hydrostatic tank (t·sqrt(g/H) = 20)", "hydrostatic.toml",
+         {"quick": [10, 20, 30], "full": [10, 20, 40, 80]}, 1.0,
+         "L2 error of p / ρ0gH", hydrostatic, RK4_ONLY),
+    Case("dam_break", "Dam break, P1 plateau against Buchner (2002)", "dam_break.toml",
+         {"quick": [15, 20, 30], "full": [20, 40, 80, 160]}, 0.6,
+         "|plateau − experiment| / experiment", dam_break, ALL),
+    Case("surge_front", "Dam break, surge front against Martin & Moyce and Koshizuka & Oka",
+         "surge_front.toml", {"quick": [10, 20, 40], "full": [10, 20, 40, 80]}, 0.1,
+         "RMS of Z = x/a (after the fitted shift)", surge_front, ALL),
+    Case("elliptic_drop", "Elliptic drop (A0 t = 0.75)", "elliptic_drop.toml",
+         {"quick": [12.5, 25, 50], "full": [12.5, 25, 50, 100]}, 1.0,
+         "|b/b_exact − 1|", elliptic_drop, ALL),
+    Case("taylor_green_re100", "Taylor-Green vortex, Re = 100 (t = 1)", "taylor_green.toml",
+         {"quick": [25, 50, 75], "full": [25, 50, 100, 200]}, 1.0,
+         "L2 velocity error / U e^{bt}", lambda s: taylor_green(s, 0.01), VISCOUS),
+    Case("taylor_green_re1000", "Taylor-Green vortex, Re = 1000 (t = 1)", "taylor_green.toml",
+         {"quick": [25, 50, 75], "full": [25, 50, 100, 200]}, 1.0,
+         "L2 velocity error / U e^{bt}", lambda s: taylor_green(s, 0.001), VISCOUS,
+         {"scheme.dynamic_viscosity": 0.001}),
+    Case("patch_impact", "Impact of two patches (ρ0 c0 U)", "patch_impact.toml",
+         {"quick": [25, 50, 100], "full": [25, 50, 100, 200]}, 1.0,
+         "|plateau/ρ0c0U − 1|", patch_impact, ALL),
+    Case("poiseuille_2d", "Poiseuille 2D (ν t/L² = 0.3)", "poiseuille_2d.toml",
+         {"quick": [10, 20, 40], "full": [10, 20, 40, 80]}, 1e-3,
+         "RMS error of u / u_max", lambda s: poiseuille(s, 0.3), VISCOUS),
+    Case("poiseuille_3d", "Poiseuille 3D slab (ν t/L² = 0.1125)", "poiseuille_3d.toml",
+         {"quick": [15], "full": [15, 20, 30]}, 1e-3,
+         "RMS error of u / u_max", lambda s: poiseuille(s, 0.1125),
+         {"quick": [("δ-SPH", "RK4")], "full": [("δ-SPH", "RK4"), ("δ-SPH", "SE2")]}),
+    Case("cavity", "Lid-driven cavity, Re = 100 (t U/L = 20)", "cavity.toml",
+         {"quick": [20, 30], "full": [25, 50, 100]}, 1.0,
+         "RMS centre-line velocity error / U (max of u, v)", cavity, RK4_ONLY),
+]

@@ -16,4 +16,103 @@ The fast subset of these cases runs in CI as `tests/validation.rs`, `tests/hydro
 `tests/taylor_green.rs` and `tests/dam_break.rs`.
 """
 
-READING = {}
+READING = {
+    "hydrostatic": """
+Reference: p = ρ0 g (H − y), u = 0 (exact). Antuono et al. (2010, 2012) showed that
+δ-SPH keeps the hydrostatic state and that Molteni-Colagrossi does not near the free
+surface. δ-SPH has the lowest error at every resolution (1–1.4% of ρ0gH, about 0.5% in
+the top layers, see `top_error`). MC is 2–4× worse and improves with Δx at order ~0.9.
+Without diffusion the error does not converge at all. The δ-SPH error does not fall
+with Δx either: it is set by the acoustic oscillation that the discrete start excites.
+That oscillation is damped by the diffusion (δ h c0 ∝ Δx), so it lasts longer at fine
+resolution. The SE2 variant is in `--full` only: at its stable CFL a run to
+t·sqrt(g/H) = 20 costs 5× the RK4 run.
+""",
+    "dam_break": """
+Reference: Buchner's P1 trace (grade C, good to a few percent). The digitised curve
+jumps to 0.6–0.7 ρ0gH at t* ≈ 2.6 and holds a plateau of 0.54 over t* 3.3–5.2.
+- The front reaches the wall on time: the pressure rises at t* = 2.48–2.57 at every
+  resolution, against 2.45–2.5 in the experiment.
+- The pressure then builds up too slowly. P1 averages 0.05–0.1 over t* 2.5–3.0 and
+  0.18–0.2 over 3.0–3.3. Snapshots show the high pressure confined to the corner below
+  P1 while a thin jet with near-zero pressure runs up past the probe.
+- From t* ≈ 4 the instantaneous values reach the experiment's level (0.5–0.6). The
+  t* 3.3–5.2 mean, the error plotted here, stays at 0.38–0.44 because it still
+  contains the slow rise.
+- The deficit does not shrink with resolution: the plateau mean is 0.38 at H/Δx = 30,
+  50 and 80 (the last two from separate runs of this case).
+- It does not depend on c0 (14 or 40 sqrt(gH): 0.39 and 0.40) or on α (0 to 0.1:
+  0.39–0.40). No-slip walls lower it (0.32).
+- This is the open accuracy question of the benchmark (issue 4's closing note).
+  `vs_fine` measures self-convergence against the finest run.
+
+The integrators:
+- SE2 needs CFL 0.15 to survive the run-up jet. At 0.2 and above, a particle is driven
+  into the right wall.
+- RK4 at CFL 1.5 survives every variant except standard SPH, which blows up at
+  H/Δx = 30. Standard SPH's P1 carries ±2 ρ0gH spikes even at H/Δx = 20.
+""",
+
+    "surge_front": """
+Reference: Martin & Moyce (1952), both columns, and Koshizuka & Oka (1996), grade C. The
+SPH front leads the experiments by a time shift τ = 0.08–0.25 (in T = t sqrt(2g/a)) that
+grows with resolution. This is the usual reading: the experiments' gate takes time to
+open. After the fitted shift every variant lies within 6–7% RMS of the data, which is
+the scatter between the two experiments. The error is flat in Δx, and the variants
+differ by less than that scatter.
+""",
+    "elliptic_drop": """
+Reference: the ODE of Monaghan (1994), integrated in `../shared/refdata` (grade A).
+- The long semi-axis b is within 0.4–0.9% at A0 t = 0.75 in every variant.
+- Kinetic energy, an exact invariant, is kept to 1e-4 to 2e-3.
+- The short semi-axis tells the variants apart (`a_error`). Without diffusion it
+  converges: 8.9%, 6.6% and 3.9% at R/Δx = 12.5, 25 and 50. With MC or δ-SPH it stays
+  at 9–10%. By this time the particle lattice is packed to Δx/2 along x and stretched
+  to 2Δx along y, and a diffusive term acting across that free surface spreads the drop
+  along x. Standard SPH, with no viscosity and a smooth flow, is the most accurate
+  variant of this case.
+""",
+
+    "taylor_green_re100": """
+Reference: the analytic decaying vortex. Every variant tracks the solution to about 1%
+until t ≈ 0.1. Then the particles line up along the streamlines near the stagnation
+points (tensile instability at the negative pressures, p_b = 0). The error jumps by
+t = 0.2 and ends at 6–40% at t = 1; at L/Δx = 50 the line-up is worst. The diffusion
+variants differ little, since the error is particle disorder, not density noise. This
+is the case for particle shifting (δ+-SPH, issue 5). RK4 and SE2 give the same errors;
+SE2 costs 5× more at its stable CFL.
+""",
+    "taylor_green_re1000": """
+As at Re = 100, with less physical damping: the particle disorder dominates the error.
+Standard SPH is no worse than the diffusive variants at the finest resolution.
+""",
+    "patch_impact": """
+Reference: water-hammer pressure ρ0 c0 U at the contact point (acoustic theory, U/c0 =
+0.05). The plateau converges to within 1–2% from h/Δx = 50 at second order. The
+coarsest run has too few steps in the plateau window. The measure of the talk's point
+is `noise`: the RMS deviation of the particle pressures from their smoothed field,
+once the waves have crossed the patches. Standard SPH carries 3–8× the noise of δ-SPH
+(0.08–0.19 ρ0c0U against 0.02), and the gap widens with resolution. MC is as quiet
+(0.013–0.022), but it is the term that fails the hydrostatic case.
+""",
+    "poiseuille_2d": """
+Reference: the start-up series of Morris et al. (1997), signs corrected (grade A). Every
+variant gives the same 2.8% RMS error, and it does not fall with Δx: it is the
+discretisation error of the Monaghan viscous operator at h/Δx = 2 with Wendland C2.
+- At h/Δx = 1.33 (the free-surface default) it is 17%.
+- With the quintic spline at h/Δx = 2 it is 0.4%.
+- Use h/Δx ≥ 2 (or a wider kernel) whenever physical viscosity matters.
+""",
+    "poiseuille_3d": """
+The same flow in a periodic 3D slab gives 0.6% RMS at L/Δx = 15: the constant
+K = 2(n+2)μ with n = 3 is right (2(2+2)μ would leave ν 20% short and the profile about
+15% off).
+""",
+    "cavity": """
+Reference: Ghia, Ghia & Shin (1982), Re = 100 (grade B), with the sliding lid of
+`[[tank]] lid_velocity`. The background pressure p_b = 5 ρ0U² keeps the vortex core in
+compression. The centre-line velocities converge at order ~1.6: 8.7% RMS at L/Δx = 20
+and 4.7% at 30 by t U/L = 20. The variants agree within 4% of each other: in this
+confined, smooth flow the density diffusion hardly matters.
+""",
+}

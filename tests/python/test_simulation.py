@@ -276,3 +276,26 @@ def test_repr_and_help():
     assert "TOML" in ds.Simulation.from_toml.__doc__
     assert "(N, D)" in ds.Simulation.positions.__doc__
     assert "hydrostatic_2d" in sim.to_toml()
+
+
+def test_free_surface_detection(tmp_path):
+    """The top layer of the hydrostatic tank is the free surface; walls and bulk are not."""
+    config = example("hydrostatic_2d", particles__spacing=0.05)
+    config["diagnostics"]["free_surface"] = True
+    sim = ds.Simulation(config)
+    fs = sim.free_surface()
+    fluid = sim.kind == ds.FLUID
+    y = sim.positions[:, 1]
+    top = fluid & (y > 1.0 - sim.spacing)
+    assert np.all(fs["on_surface"][top])
+    assert not np.any(fs["on_surface"][fluid & (y < 1.0 - 2 * sim.spacing)])
+    assert not np.any(fs["on_surface"][~fluid])
+    x = sim.positions[:, 0]
+    flat = top & (x > 3 * sim.spacing) & (x < 2.0 - 3 * sim.spacing)  # away from the walls
+    np.testing.assert_allclose(fs["normal"][flat], np.tile([0.0, 1.0], (flat.sum(), 1)),
+                               atol=1e-9)
+    sim.write_snapshot(tmp_path / "s.h5")
+    with h5py.File(tmp_path / "s.h5") as f:
+        order = np.argsort(f["id"][:])
+        np.testing.assert_array_equal(f["free_surface"][:][order], fs["on_surface"])
+    assert "free_surface" in (tmp_path / "s.xmf").read_text()

@@ -130,7 +130,7 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
     let row = sim.series_values();
     output.series_row(&row)?;
     let e0 = sim.energies();
-    output.snapshot(&sim.particles, sim.time, 0)?;
+    write_state(&sim, output)?;
     let (mut next_snap, mut next_series) = (snap_every, series_every);
     let bar = progress_bar(quiet);
     let start = Instant::now();
@@ -147,7 +147,7 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
         }
         if snap_every > 0.0 && sim.time >= next_snap && sim.time < end {
             sim.sync_pressure();
-            output.snapshot(&sim.particles, sim.time, sim.counters.steps)?;
+            write_state(&sim, output)?;
             next_snap += snap_every;
         }
         let steps_per_s = sim.counters.steps as f64 / start.elapsed().as_secs_f64();
@@ -162,7 +162,7 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
     if outcome.is_ok() {
         sim.sync_pressure();
     }
-    let last = output.snapshot(&sim.particles, sim.time, sim.counters.steps)?;
+    let last = write_state(&sim, output)?;
     summary(&sim, output, wall, e0);
     if let Err(e) = outcome {
         println!(
@@ -172,6 +172,17 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
         return Err(e.into());
     }
     Ok(())
+}
+
+/// One snapshot, with the free surface when the case asks for it.
+fn write_state<const D: usize>(sim: &Simulation<D>, output: &mut Output) -> Result<PathBuf> {
+    let surface = sim
+        .case
+        .diagnostics
+        .free_surface
+        .then(|| sim.free_surface());
+    let steps = sim.counters.steps;
+    Ok(output.snapshot(&sim.particles, surface.as_ref(), sim.time, steps)?)
 }
 
 fn summary<const D: usize>(

@@ -334,6 +334,10 @@ pub struct DiagnosticsConfig {
     /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
     #[serde(default)]
     pub surge_front_axis: Option<usize>,
+    /// Detect the free surface (Marrone et al. 2010) at each snapshot and write the
+    /// flag, the normal and λ with it.
+    #[serde(default)]
+    pub free_surface: bool,
 }
 
 impl Case {

@@ -16,6 +16,7 @@ use crate::boundary::extrapolate_walls;
 use crate::diffusion::DensityDiffusion;
 use crate::domain::Domain;
 use crate::eos::LinearEos;
+use crate::free_surface::{self, FreeSurface};
 use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
@@ -100,6 +101,13 @@ pub trait Model<const D: usize>: Send + Sync {
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     );
+    /// Free-surface detection (Marrone et al. 2010) at the current state.
+    fn free_surface(
+        &self,
+        particles: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) -> FreeSurface<D>;
     /// Viscous and diffusive powers at the state of the last `evaluate` call.
     fn powers(
         &self,
@@ -328,6 +336,15 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         self.update_pressure(particles);
         let ph = self.physics;
         extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
+    }
+
+    fn free_surface(
+        &self,
+        particles: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) -> FreeSurface<D> {
+        free_surface::detect(&self.kernel, particles, list, domain)
     }
 
     fn powers(

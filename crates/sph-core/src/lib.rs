@@ -14,6 +14,7 @@ pub mod domain;
 pub mod eos;
 pub mod equations;
 pub mod error;
+pub mod free_surface;
 pub mod geometry;
 pub mod integrator;
 pub mod kernel;

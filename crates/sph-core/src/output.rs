@@ -6,6 +6,7 @@
 //! is never reused unless the caller explicitly allows it.
 
 use crate::error::{Result, SphError};
+use crate::free_surface::FreeSurface;
 use crate::particles::Particles;
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
@@ -17,6 +18,8 @@ struct Entry {
     file: String,
     time: f64,
     n: usize,
+    /// Whether the file holds the free-surface fields.
+    surface: bool,
 }
 
 /// The output folder of one run.
@@ -63,20 +66,23 @@ impl Output {
         })
     }
 
-    /// Writes one HDF5 snapshot and refreshes the XDMF index.
+    /// Writes one HDF5 snapshot (with the free-surface fields when given) and
+    /// refreshes the XDMF index.
     pub fn snapshot<const D: usize>(
         &mut self,
         p: &Particles<D>,
+        surface: Option<&FreeSurface<D>>,
         time: f64,
         step: u64,
     ) -> Result<PathBuf> {
         let name = format!("particles_{:06}.h5", self.entries.len());
         let path = self.dir.join(&name);
-        write_snapshot(&path, p, time, step)?;
+        write_snapshot(&path, p, surface, time, step)?;
         self.entries.push(Entry {
             file: name,
             time,
             n: p.len(),
+            surface: surface.is_some(),
         });
         self.write_text("particles.xmf", &xdmf(&self.entries))?;
         Ok(path)
@@ -126,15 +132,17 @@ fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Vec<f64> {
 }
 
 /// Writes one HDF5 snapshot: `position`, `velocity` (N×3), `density`, `pressure`,
-/// `kind` (0 fluid, 1 wall), `id`; attributes `time`, `step`, `dimension`.
+/// `kind` (0 fluid, 1 wall), `id`; with `surface`, also `free_surface` (1 on the free
+/// surface), `normal` (N×3) and `lambda`; attributes `time`, `step`, `dimension`.
 pub fn write_snapshot<const D: usize>(
     path: &Path,
     p: &Particles<D>,
+    surface: Option<&FreeSurface<D>>,
     time: f64,
     step: u64,
 ) -> Result<()> {
     atomic_write(path, |tmp| {
-        write_h5(tmp, p, time, step).map_err(|e| e.to_string())
+        write_h5(tmp, p, surface, time, step).map_err(|e| e.to_string())
     })
 }
 
@@ -144,6 +152,7 @@ pub fn write_snapshot<const D: usize>(
 pub fn write_indexed_snapshot<const D: usize>(
     path: &Path,
     p: &Particles<D>,
+    surface: Option<&FreeSurface<D>>,
     time: f64,
     step: u64,
     overwrite: bool,
@@ -167,11 +176,12 @@ pub fn write_indexed_snapshot<const D: usize>(
         .file_name()
         .and_then(|n| n.to_str())
         .ok_or_else(|| SphError::output(path, "not a file name"))?;
-    write_snapshot(path, p, time, step)?;
+    write_snapshot(path, p, surface, time, step)?;
     let entry = Entry {
         file: name.to_string(),
         time,
         n: p.len(),
+        surface: surface.is_some(),
     };
     atomic_write(&index, |tmp| {
         fs::write(tmp, xdmf(&[entry])).map_err(|e| e.to_string())
@@ -182,6 +192,7 @@ pub fn write_indexed_snapshot<const D: usize>(
 fn write_h5<const D: usize>(
     path: &Path,
     p: &Particles<D>,
+    surface: Option<&FreeSurface<D>>,
     time: f64,
     step: u64,
 ) -> hdf5::Result<()> {
@@ -212,6 +223,21 @@ fn write_h5<const D: usize>(
         .shape(n)
         .create("id")?
         .write_raw(&p.id)?;
+    if let Some(s) = surface {
+        let flag: Vec<u8> = s.on_surface.iter().map(|&b| b as u8).collect();
+        file.new_dataset::<u8>()
+            .shape(n)
+            .create("free_surface")?
+            .write_raw(&flag)?;
+        file.new_dataset::<f64>()
+            .shape((n, 3))
+            .create("normal")?
+            .write_raw(&padded(&s.normal))?;
+        file.new_dataset::<f64>()
+            .shape(n)
+            .create("lambda")?
+            .write_raw(&s.lambda)?;
+    }
     file.new_attr::<f64>().create("time")?.write_scalar(&time)?;
     file.new_attr::<u64>().create("step")?.write_scalar(&step)?;
     file.new_attr::<u32>()
@@ -258,6 +284,14 @@ fn xdmf(entries: &[Entry]) -> String {
         s += &scalar("pressure", "Float", 8);
         s += &scalar("kind", "UChar", 1);
         s += &scalar("id", "UInt", 4);
+        if e.surface {
+            s += &scalar("free_surface", "UChar", 1);
+            s += &scalar("lambda", "Float", 8);
+            s += &format!(
+                "    <Attribute Name=\"normal\" AttributeType=\"Vector\" Center=\"Node\">{}</Attribute>\n",
+                item("normal", &n3, "Float", 8)
+            );
+        }
         s += "   </Grid>\n";
     }
     s + "  </Grid>\n </Domain>\n</Xdmf>\n"

@@ -57,6 +57,11 @@ impl<const D: usize> Particles<D> {
         self.u_wall_visc.push(Vector::zeros());
     }
 
+    /// `V_i = m_i / ρ_i`.
+    pub fn volume(&self, i: usize) -> f64 {
+        self.mass[i] / self.rho[i]
+    }
+
     pub fn n_fluid(&self) -> usize {
         self.kind.iter().filter(|&&k| k == Kind::Fluid).count()
     }

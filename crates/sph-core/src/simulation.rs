@@ -6,6 +6,7 @@ use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
 use crate::equations::{Model, Physics, Powers, Rates};
 use crate::error::{Result, SphError};
+use crate::free_surface::FreeSurface;
 use crate::geometry;
 use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::neighbours::NeighbourList;
@@ -249,6 +250,12 @@ impl<const D: usize> Simulation<D> {
             &self.domain,
             point,
         )
+    }
+
+    /// Free-surface flags, normals and `λ` (Marrone et al. 2010), in the current order.
+    pub fn free_surface(&self) -> FreeSurface<D> {
+        self.model
+            .free_surface(&self.particles, &self.list, &self.domain)
     }
 
     pub fn surge_front(&self, axis: usize) -> f64 {

@@ -377,6 +377,22 @@ impl PySimulation {
         })
     }
 
+    /// Free-surface detection (Marrone et al. 2010) at the current state, in id order:
+    /// ``on_surface`` (bool, N), ``normal`` (unit outward normal estimate, N × D; zero
+    /// for walls) and ``lambda`` (smallest eigenvalue of the renormalisation matrix,
+    /// about 1 inside, 0.5 at the surface).
+    fn free_surface<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        each!(&self.solver, s => {
+            let f = s.free_surface();
+            let id = &s.particles.id;
+            dict.set_item("on_surface", arrays::scalars(py, id, &f.on_surface, |b| b))?;
+            dict.set_item("normal", arrays::vectors(py, id, &f.normal))?;
+            dict.set_item("lambda", arrays::scalars(py, id, &f.lambda, |v| v))?;
+        });
+        Ok(dict)
+    }
+
     /// Sets all velocities [m/s] from a float64 array (N, D) in id order (as
     /// ``velocities`` returns it). Wall rows must be zero: walls are fixed.
     fn set_velocities(&mut self, velocities: &Bound<'_, PyAny>) -> PyResult<()> {
@@ -407,6 +423,7 @@ impl PySimulation {
         each!(&self.solver, s => sph_core::output::write_indexed_snapshot(
             &path,
             &s.particles,
+            s.case.diagnostics.free_surface.then(|| s.free_surface()).as_ref(),
             s.time,
             s.counters.steps,
             overwrite,

@@ -95,6 +95,8 @@ class Simulation:
         """
     def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,)."""
+    def free_surface(self) -> dict[str, npt.NDArray[Any]]:
+        """Free-surface detection: ``on_surface`` (N,), ``normal`` (N, D), ``lambda`` (N,)."""
     def set_velocities(self, velocities: npt.NDArray[np.float64]) -> None:
         """Sets velocities from a float64 array (N, D) in id order; wall rows zero."""
     def set_density(self, density: npt.NDArray[np.float64]) -> None:

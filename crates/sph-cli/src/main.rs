@@ -174,15 +174,10 @@ fn drive<const D: usize>(mut sim: Simulation<D>, output: &mut Output, quiet: boo
     Ok(())
 }
 
-/// One snapshot, with the free surface when the case asks for it.
+/// One snapshot, with the free surface and shifting velocity when the run has them.
 fn write_state<const D: usize>(sim: &Simulation<D>, output: &mut Output) -> Result<PathBuf> {
-    let surface = sim
-        .case
-        .diagnostics
-        .free_surface
-        .then(|| sim.free_surface());
     let steps = sim.counters.steps;
-    Ok(output.snapshot(&sim.particles, surface.as_ref(), sim.time, steps)?)
+    Ok(sim.with_extras(|extras| output.snapshot(&sim.particles, extras, sim.time, steps))?)
 }
 
 fn summary<const D: usize>(

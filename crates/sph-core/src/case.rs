@@ -154,6 +154,10 @@ pub enum InitialField {
     /// 2D elliptic drop (Monaghan 1994) of a disc of `radius` R centred at the origin:
     /// `u = (-A0 x, A0 y)` with `A0 = strain_rate`, `p = ρ0 A0² (R² - x² - y²)/2`.
     EllipticDrop { strain_rate: f64, radius: f64 },
+    /// 2D rotating square patch (Colagrossi 2005; Sun et al. 2017) of `side` L centred at
+    /// the origin: `u = (ω y, -ω x)` with `ω = angular_velocity`, and the pressure that
+    /// solves ∇²p = 2ρ0ω² with p = 0 on the edges (series in [`crate::geometry`]).
+    RotatingSquare { angular_velocity: f64, side: f64 },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -219,6 +223,21 @@ pub struct SchemeConfig {
     pub force_cfl: f64,
     #[serde(default = "default_walls")]
     pub walls: WallCondition,
+    /// Particle shifting after each step.
+    #[serde(default = "default_shifting")]
+    pub shifting: ShiftingChoice,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShiftingChoice {
+    None,
+    /// δ+-SPH shifting (Sun et al. 2017) with free-surface treatment.
+    DeltaPlus,
+}
+
+fn default_shifting() -> ShiftingChoice {
+    ShiftingChoice::None
 }
 
 impl Default for SchemeConfig {
@@ -234,6 +253,7 @@ impl Default for SchemeConfig {
             viscous_cfl: None,
             force_cfl: default_force_cfl(),
             walls: default_walls(),
+            shifting: default_shifting(),
         }
     }
 }
@@ -488,6 +508,14 @@ impl Case {
                 only_2d(d, "taylor_green")?;
                 finite("initial.amplitude", *amplitude)?;
                 positive("initial.wavelength", *wavelength)?;
+            }
+            Some(InitialField::RotatingSquare {
+                angular_velocity,
+                side,
+            }) => {
+                only_2d(d, "rotating_square")?;
+                finite("initial.angular_velocity", *angular_velocity)?;
+                positive("initial.side", *side)?;
             }
             Some(InitialField::EllipticDrop {
                 strain_rate,

@@ -21,6 +21,7 @@ use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::renormalisation::density_gradient;
+use crate::shifting;
 use crate::viscosity::Viscosity;
 use rayon::prelude::*;
 
@@ -108,6 +109,16 @@ pub trait Model<const D: usize>: Send + Sync {
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     ) -> FreeSurface<D>;
+    /// δ+-SPH shifting displacements (see [`crate::shifting`]), `cfl_ma = U_max Δt/h`.
+    fn shift(
+        &self,
+        particles: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        surface: &FreeSurface<D>,
+        dx: f64,
+        cfl_ma: f64,
+    ) -> Vec<Vector<D>>;
     /// Viscous and diffusive powers at the state of the last `evaluate` call.
     fn powers(
         &self,
@@ -345,6 +356,18 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         domain: &Domain<D>,
     ) -> FreeSurface<D> {
         free_surface::detect(&self.kernel, particles, list, domain)
+    }
+
+    fn shift(
+        &self,
+        particles: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        surface: &FreeSurface<D>,
+        dx: f64,
+        cfl_ma: f64,
+    ) -> Vec<Vector<D>> {
+        shifting::displacements(&self.kernel, dx, particles, list, domain, surface, cfl_ma)
     }
 
     fn powers(

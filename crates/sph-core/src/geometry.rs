@@ -105,6 +105,14 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
                 u[1] = strain_rate * x[1];
                 p = 0.5 * rho0 * strain_rate.powi(2) * (radius.powi(2) - x.norm_squared());
             }
+            Some(InitialField::RotatingSquare {
+                angular_velocity,
+                side,
+            }) => {
+                u[0] = angular_velocity * x[1];
+                u[1] = -angular_velocity * x[0];
+                p = rho0 * angular_velocity.powi(2) * rotating_square_pressure(x[0], x[1], side);
+            }
             None => {}
         }
         let rho = eos.density(p + eos.background);
@@ -122,6 +130,25 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         eos,
         gravity,
     })
+}
+
+/// Initial pressure of the rotating square patch over `ρ0 ω²`: the solution of
+/// `∇²p = 2` on the square of side L centred at the origin with p = 0 on its edges,
+/// `Σ_{m,n odd} -32 / (m n π² [(mπ/L)² + (nπ/L)²]) sin(mπx*/L) sin(nπy*/L)`,
+/// `x* = x + L/2` (refdata README §5; the terms fall as 1/(m n (m² + n²))).
+pub fn rotating_square_pressure(x: f64, y: f64, side: f64) -> f64 {
+    const TERMS: usize = 60;
+    let (xs, ys) = ((x + 0.5 * side) / side, (y + 0.5 * side) / side);
+    let mut p = 0.0;
+    for m in (1..2 * TERMS).step_by(2) {
+        let (mf, sx) = (m as f64, (m as f64 * PI * xs).sin());
+        for n in (1..2 * TERMS).step_by(2) {
+            let nf = n as f64;
+            let k2 = (mf * PI / side).powi(2) + (nf * PI / side).powi(2);
+            p -= 32.0 / (mf * nf * PI * PI * k2) * sx * (nf * PI * ys).sin();
+        }
+    }
+    p
 }
 
 /// The lattice points of a fluid block: the whole box, or those inside the inscribed
@@ -295,4 +322,18 @@ fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Do
         }
     }
     Ok(Domain::new(lo, hi, periodic))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The centre value quoted in `../shared/refdata/README.md` §5, -0.147343 ρ0 ω² L²,
+    /// and p = 0 on the edges.
+    #[test]
+    fn rotating_square_pressure_series() {
+        assert!((rotating_square_pressure(0.0, 0.0, 1.0) + 0.147343).abs() < 2e-6);
+        assert!((rotating_square_pressure(0.0, 0.0, 2.0) + 4.0 * 0.147343).abs() < 1e-5);
+        assert!(rotating_square_pressure(0.5, 0.1, 1.0).abs() < 1e-12);
+    }
 }

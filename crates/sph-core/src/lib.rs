@@ -23,6 +23,7 @@ pub mod output;
 pub mod particles;
 pub mod renormalisation;
 pub mod scheme;
+pub mod shifting;
 pub mod simulation;
 pub mod timestep;
 pub mod viscosity;

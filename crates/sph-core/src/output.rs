@@ -12,6 +12,15 @@ use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+/// Optional per-particle fields written with a snapshot, in the current particle order.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Extras<'a, const D: usize> {
+    /// Free-surface flag, normal and λ.
+    pub surface: Option<&'a FreeSurface<D>>,
+    /// Velocity of the last δ+-SPH shift, δr/Δt.
+    pub shift_velocity: Option<&'a [crate::Vector<D>]>,
+}
+
 /// One snapshot listed in the XDMF index.
 #[derive(Debug, Clone)]
 struct Entry {
@@ -20,6 +29,20 @@ struct Entry {
     n: usize,
     /// Whether the file holds the free-surface fields.
     surface: bool,
+    /// Whether the file holds the shifting velocity.
+    shift: bool,
+}
+
+impl Entry {
+    fn new<const D: usize>(file: String, time: f64, n: usize, extras: &Extras<D>) -> Self {
+        Self {
+            file,
+            time,
+            n,
+            surface: extras.surface.is_some(),
+            shift: extras.shift_velocity.is_some(),
+        }
+    }
 }
 
 /// The output folder of one run.
@@ -66,24 +89,19 @@ impl Output {
         })
     }
 
-    /// Writes one HDF5 snapshot (with the free-surface fields when given) and
+    /// Writes one HDF5 snapshot (with the extra fields given) and
     /// refreshes the XDMF index.
     pub fn snapshot<const D: usize>(
         &mut self,
         p: &Particles<D>,
-        surface: Option<&FreeSurface<D>>,
+        extras: &Extras<D>,
         time: f64,
         step: u64,
     ) -> Result<PathBuf> {
         let name = format!("particles_{:06}.h5", self.entries.len());
         let path = self.dir.join(&name);
-        write_snapshot(&path, p, surface, time, step)?;
-        self.entries.push(Entry {
-            file: name,
-            time,
-            n: p.len(),
-            surface: surface.is_some(),
-        });
+        write_snapshot(&path, p, extras, time, step)?;
+        self.entries.push(Entry::new(name, time, p.len(), extras));
         self.write_text("particles.xmf", &xdmf(&self.entries))?;
         Ok(path)
     }
@@ -132,17 +150,18 @@ fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Vec<f64> {
 }
 
 /// Writes one HDF5 snapshot: `position`, `velocity` (N×3), `density`, `pressure`,
-/// `kind` (0 fluid, 1 wall), `id`; with `surface`, also `free_surface` (1 on the free
-/// surface), `normal` (N×3) and `lambda`; attributes `time`, `step`, `dimension`.
+/// `kind` (0 fluid, 1 wall), `id`; with the extras, also `free_surface` (1 on the free
+/// surface), `normal` (N×3), `lambda` and `shifting_velocity` (N×3); attributes `time`,
+/// `step`, `dimension`.
 pub fn write_snapshot<const D: usize>(
     path: &Path,
     p: &Particles<D>,
-    surface: Option<&FreeSurface<D>>,
+    extras: &Extras<D>,
     time: f64,
     step: u64,
 ) -> Result<()> {
     atomic_write(path, |tmp| {
-        write_h5(tmp, p, surface, time, step).map_err(|e| e.to_string())
+        write_h5(tmp, p, extras, time, step).map_err(|e| e.to_string())
     })
 }
 
@@ -152,7 +171,7 @@ pub fn write_snapshot<const D: usize>(
 pub fn write_indexed_snapshot<const D: usize>(
     path: &Path,
     p: &Particles<D>,
-    surface: Option<&FreeSurface<D>>,
+    extras: &Extras<D>,
     time: f64,
     step: u64,
     overwrite: bool,
@@ -176,13 +195,8 @@ pub fn write_indexed_snapshot<const D: usize>(
         .file_name()
         .and_then(|n| n.to_str())
         .ok_or_else(|| SphError::output(path, "not a file name"))?;
-    write_snapshot(path, p, surface, time, step)?;
-    let entry = Entry {
-        file: name.to_string(),
-        time,
-        n: p.len(),
-        surface: surface.is_some(),
-    };
+    write_snapshot(path, p, extras, time, step)?;
+    let entry = Entry::new(name.to_string(), time, p.len(), extras);
     atomic_write(&index, |tmp| {
         fs::write(tmp, xdmf(&[entry])).map_err(|e| e.to_string())
     })?;
@@ -192,7 +206,7 @@ pub fn write_indexed_snapshot<const D: usize>(
 fn write_h5<const D: usize>(
     path: &Path,
     p: &Particles<D>,
-    surface: Option<&FreeSurface<D>>,
+    extras: &Extras<D>,
     time: f64,
     step: u64,
 ) -> hdf5::Result<()> {
@@ -223,7 +237,13 @@ fn write_h5<const D: usize>(
         .shape(n)
         .create("id")?
         .write_raw(&p.id)?;
-    if let Some(s) = surface {
+    if let Some(v) = extras.shift_velocity {
+        file.new_dataset::<f64>()
+            .shape((n, 3))
+            .create("shifting_velocity")?
+            .write_raw(&padded(v))?;
+    }
+    if let Some(s) = extras.surface {
         let flag: Vec<u8> = s.on_surface.iter().map(|&b| b as u8).collect();
         file.new_dataset::<u8>()
             .shape(n)
@@ -284,13 +304,19 @@ fn xdmf(entries: &[Entry]) -> String {
         s += &scalar("pressure", "Float", 8);
         s += &scalar("kind", "UChar", 1);
         s += &scalar("id", "UInt", 4);
+        let vector = |name: &str| {
+            format!(
+                "    <Attribute Name=\"{name}\" AttributeType=\"Vector\" Center=\"Node\">{}</Attribute>\n",
+                item(name, &n3, "Float", 8)
+            )
+        };
+        if e.shift {
+            s += &vector("shifting_velocity");
+        }
         if e.surface {
             s += &scalar("free_surface", "UChar", 1);
             s += &scalar("lambda", "Float", 8);
-            s += &format!(
-                "    <Attribute Name=\"normal\" AttributeType=\"Vector\" Center=\"Node\">{}</Attribute>\n",
-                item("normal", &n3, "Float", 8)
-            );
+            s += &vector("normal");
         }
         s += "   </Grid>\n";
     }

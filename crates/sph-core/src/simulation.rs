@@ -1,7 +1,7 @@
 //! A running simulation: particles, neighbour lists, the resolved scheme and the
 //! integrator, advanced step by step. The CLI (and any other front) drives this type.
 
-use crate::case::{Case, IntegratorChoice};
+use crate::case::{Case, IntegratorChoice, ShiftingChoice};
 use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
 use crate::equations::{Model, Physics, Powers, Rates};
@@ -10,6 +10,7 @@ use crate::free_surface::FreeSurface;
 use crate::geometry;
 use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::neighbours::NeighbourList;
+use crate::output::Extras;
 use crate::particles::{Particles, Vector};
 use crate::scheme::{build_model, viscosity_k, wall_viscous_weight};
 use crate::timestep::TimeStepControl;
@@ -43,6 +44,8 @@ pub struct Simulation<const D: usize> {
     pub dt: f64,
     pub counters: Counters,
     pub budget: Option<EnergyBudget>,
+    /// δr/Δt of the last shift, when the case shifts particles (δ+-SPH).
+    pub shift_velocity: Option<Vec<Vector<D>>>,
     model: Box<dyn Model<D>>,
     integrator: Box<dyn TimeIntegrator<D>>,
     list: NeighbourList<D>,
@@ -80,6 +83,8 @@ impl<const D: usize> Simulation<D> {
             .map(|d| setup.domain.period[d] / 3.0 - support)
             .fold(f64::INFINITY, f64::min);
         let budget = case.diagnostics.energy_budget.then(EnergyBudget::default);
+        let shift_velocity = (case.scheme.shifting == ShiftingChoice::DeltaPlus)
+            .then(|| vec![Vector::zeros(); setup.particles.len()]);
         let mut sim = Self {
             case,
             particles: setup.particles,
@@ -88,6 +93,7 @@ impl<const D: usize> Simulation<D> {
             dt: 0.0,
             counters: Counters::default(),
             budget,
+            shift_velocity,
             model,
             integrator,
             list: NeighbourList::default(),
@@ -125,7 +131,36 @@ impl<const D: usize> Simulation<D> {
     /// Largest displacement one step may add: `Δt_max (|u|max + |a|max Δt_max)`.
     fn step_reach(&self) -> f64 {
         let dt = self.control.acoustic();
-        dt * (1.2 * self.max_speed() + self.last_acceleration * dt)
+        let shift = if self.shift_velocity.is_some() {
+            crate::shifting::CAP * self.case.h()
+        } else {
+            0.0
+        };
+        dt * (1.2 * self.max_speed() + self.last_acceleration * dt) + shift
+    }
+
+    /// Moves the fluid particles by the δ+-SPH shifting of a step of length `dt`.
+    fn shift(&mut self, dt: f64) {
+        let surface = self.free_surface();
+        let cfl_ma = self.max_speed() * dt / self.case.h();
+        let dr = self.model.shift(
+            &self.particles,
+            &self.list,
+            &self.domain,
+            &surface,
+            self.case.dx(),
+            cfl_ma,
+        );
+        let domain = self.domain;
+        self.particles
+            .x
+            .par_iter_mut()
+            .zip(dr.par_iter())
+            .for_each(|(x, d)| {
+                *x += d;
+                domain.wrap(x);
+            });
+        self.shift_velocity = Some(dr.iter().map(|d| d / dt).collect());
     }
 
     /// Rebuilds lists (and reorders particles by cell) with a skin covering `reach`.
@@ -194,6 +229,9 @@ impl<const D: usize> Simulation<D> {
         self.integrator.advance(dt, &mut self.particles, &mut cx);
         let domain = self.domain;
         self.particles.x.par_iter_mut().for_each(|x| domain.wrap(x));
+        if self.shift_velocity.is_some() {
+            self.shift(dt);
+        }
         self.last_acceleration = a_max;
         self.dt = dt;
         self.time += dt;
@@ -256,6 +294,17 @@ impl<const D: usize> Simulation<D> {
     pub fn free_surface(&self) -> FreeSurface<D> {
         self.model
             .free_surface(&self.particles, &self.list, &self.domain)
+    }
+
+    /// Calls `f` with the extra snapshot fields this run has: the free surface (when the
+    /// case asks for it or shifts particles) and the shifting velocity.
+    pub fn with_extras<R>(&self, f: impl FnOnce(&Extras<D>) -> R) -> R {
+        let wanted = self.case.diagnostics.free_surface || self.shift_velocity.is_some();
+        let surface = wanted.then(|| self.free_surface());
+        f(&Extras {
+            surface: surface.as_ref(),
+            shift_velocity: self.shift_velocity.as_deref(),
+        })
     }
 
     pub fn surge_front(&self, axis: usize) -> f64 {

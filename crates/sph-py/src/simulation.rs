@@ -420,14 +420,16 @@ impl PySimulation {
         overwrite: bool,
     ) -> PyResult<PathBuf> {
         self.fresh_pressure();
-        each!(&self.solver, s => sph_core::output::write_indexed_snapshot(
-            &path,
-            &s.particles,
-            s.case.diagnostics.free_surface.then(|| s.free_surface()).as_ref(),
-            s.time,
-            s.counters.steps,
-            overwrite,
-        ))
+        each!(&self.solver, s => s.with_extras(|extras| {
+            sph_core::output::write_indexed_snapshot(
+                &path,
+                &s.particles,
+                extras,
+                s.time,
+                s.counters.steps,
+                overwrite,
+            )
+        }))
         .map_err(|e| to_py(py, e))
     }
 

@@ -226,6 +226,10 @@ pub struct SchemeConfig {
     /// Particle shifting after each step.
     #[serde(default = "default_shifting")]
     pub shifting: ShiftingChoice,
+    /// Tensile instability control (Sun et al. 2018): `(p_j - p_i)` in the momentum
+    /// equation for interior particles with negative pressure.
+    #[serde(default)]
+    pub tensile_control: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -254,6 +258,7 @@ impl Default for SchemeConfig {
             force_cfl: default_force_cfl(),
             walls: default_walls(),
             shifting: default_shifting(),
+            tensile_control: false,
         }
     }
 }

@@ -109,6 +109,9 @@ pub trait Model<const D: usize>: Send + Sync {
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     ) -> FreeSurface<D>;
+    /// Sets the particles (current order) where tensile instability control applies, or
+    /// `None` to switch it off.
+    fn set_tensile_control(&mut self, interior: Option<Vec<bool>>);
     /// δ+-SPH shifting displacements (see [`crate::shifting`]), `cfl_ma = U_max Δt/h`.
     fn shift(
         &self,
@@ -147,6 +150,9 @@ pub struct Scheme<const D: usize, K, Df, V> {
     eta2: f64,
     /// ⟨∇ρ⟩^L, allocated only when the diffusion needs it.
     grad: Vec<Vector<D>>,
+    /// Tensile instability control (Sun et al. 2018): per particle, whether it is inside
+    /// the fluid (not on or near the free surface); `None` when the control is off.
+    interior: Option<Vec<bool>>,
 }
 
 /// Per-particle pair sums (before the prefactors).
@@ -172,6 +178,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             diffusion_scale: diffusion.delta() * h * physics.eos.c0,
             eta2: 0.01 * h * h,
             grad: Vec::new(),
+            interior: None,
         }
     }
 
@@ -187,6 +194,12 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         let xi = p.x[i];
         let ui = p.u[i];
         let (pi, rho_i) = (p.p[i], p.rho[i]);
+        // Tensile instability control (Sun et al. 2018, SCHEME.md §9): an interior particle
+        // in tension takes (p_j - p_i) instead of (p_j + p_i). Decided once per particle.
+        let pi_pair = match &self.interior {
+            Some(interior) if pi < 0.0 && interior[i] => -pi,
+            _ => pi,
+        };
         let zero = Vector::<D>::zeros();
         let grad_i = if DIFF && Df::NEEDS_GRADIENT {
             self.grad[i]
@@ -207,7 +220,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             let vj = p.mass[j] / p.rho[j];
             let grad_w = x_ij * (f * vj);
             s.divergence += (p.u[j] - ui).dot(&grad_w);
-            s.pressure += grad_w * (p.p[j] + pi);
+            s.pressure += grad_w * (p.p[j] + pi_pair);
             let fluid_j = p.kind[j] == Kind::Fluid;
             if V::ACTIVE {
                 let (uv_j, weight) = if fluid_j {
@@ -356,6 +369,10 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         domain: &Domain<D>,
     ) -> FreeSurface<D> {
         free_surface::detect(&self.kernel, particles, list, domain)
+    }
+
+    fn set_tensile_control(&mut self, interior: Option<Vec<bool>>) {
+        self.interior = interior;
     }
 
     fn shift(

@@ -36,6 +36,9 @@ pub struct FreeSurface<const D: usize> {
     pub normal: Vec<Vector<D>>,
     /// Whether the particle is on the free surface (fluid only).
     pub on_surface: Vec<bool>,
+    /// Whether the particle is on or near the surface: on it, `λ <= 0.75`, or with a
+    /// surface particle within its kernel support (fluid only).
+    pub near: Vec<bool>,
 }
 
 /// Smallest eigenvalue of a symmetric 2×2 or 3×3 matrix.
@@ -103,6 +106,19 @@ pub fn detect<const D: usize, K: Kernel>(
         out.normal.push(n);
         out.on_surface.push(s);
     }
+    out.near = (0..particles.len())
+        .into_par_iter()
+        .map(|i| {
+            particles.kind[i] == Kind::Fluid
+                && (out.on_surface[i]
+                    || out.lambda[i] <= INTERIOR_LAMBDA
+                    || list.of(i).iter().any(|&j| {
+                        let j = j as usize;
+                        out.on_surface[j]
+                            && domain.separation(&particles.x[j], &particles.x[i]).norm() < support
+                    }))
+        })
+        .collect();
     out
 }
 

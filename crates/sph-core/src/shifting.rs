@@ -17,7 +17,7 @@
 //! corrected for the displacement (the δ+-SPH choice).
 
 use crate::domain::Domain;
-use crate::free_surface::{FreeSurface, INTERIOR_LAMBDA};
+use crate::free_surface::FreeSurface;
 use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
@@ -51,7 +51,6 @@ pub fn displacements<const D: usize, K: Kernel>(
             }
             let xi = particles.x[i];
             let mut sum = Vector::<D>::zeros();
-            let mut near_surface = surface.on_surface[i] || surface.lambda[i] <= INTERIOR_LAMBDA;
             for &j in list.of(i) {
                 let j = j as usize;
                 let x_ij = domain.separation(&xi, &particles.x[j]);
@@ -60,12 +59,11 @@ pub fn displacements<const D: usize, K: Kernel>(
                 if w == 0.0 {
                     continue;
                 }
-                near_surface |= surface.on_surface[j];
                 let weight = 1.0 + ANTI_CLUSTERING * (w / w_dx).powi(4);
                 sum += x_ij * (kernel.dw_over_r(r) * particles.volume(j) * weight);
             }
             let mut dr = -sum * scale;
-            if near_surface {
+            if surface.near[i] {
                 let n = surface.normal[i];
                 dr -= n * n.dot(&dr);
             }

@@ -212,6 +212,11 @@ impl<const D: usize> Simulation<D> {
         {
             self.rebuild(reach);
         }
+        if self.case.scheme.tensile_control {
+            let surface = self.free_surface();
+            let interior = surface.near.iter().map(|near| !near).collect();
+            self.model.set_tensile_control(Some(interior));
+        }
         let mut cx = Context {
             model: self.model.as_mut(),
             list: &self.list,

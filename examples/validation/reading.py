@@ -43,8 +43,13 @@ jumps to 0.6–0.7 ρ0gH at t* ≈ 2.6 and holds a plateau of 0.54 over t* 3.3�
   50 and 80 (the last two from separate runs of this case).
 - It does not depend on c0 (14 or 40 sqrt(gH): 0.39 and 0.40) or on α (0 to 0.1:
   0.39–0.40). No-slip walls lower it (0.32).
-- This is the open accuracy question of the benchmark (issue 4's closing note).
-  `vs_fine` measures self-convergence against the finest run.
+- The comparison hinges on the probe height, which the sources disagree on: PySPH puts
+  P1 at 0.2H = 0.12 m, Adami et al. and TrixiParticles at 0.16 m. At H/Δx = 50 the
+  plateau mean is 0.574 at y = 0.12 m (+6% on the experiment) and 0.386 at 0.16 m. The
+  pressure there falls with height at three times the hydrostatic rate, because the
+  run-up flow accelerates up the wall. The first impact (t* 2.5–3.0) is still low at
+  0.12 m: 0.30 against about 0.6.
+- `vs_fine` measures self-convergence against the finest run.
 
 The integrators:
 - SE2 needs CFL 0.15 to survive the run-up jet. At 0.2 and above, a particle is driven

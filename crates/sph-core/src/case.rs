@@ -365,6 +365,10 @@ pub struct DiagnosticsConfig {
     pub free_surface: bool,
 }
 
+/// The most particles a case may ask for: 2^30, beyond the memory of any one machine
+/// this solver runs on (about 300 bytes a particle).
+pub const MAX_PARTICLES: f64 = 1_073_741_824.0;
+
 impl Case {
     /// Reads and validates a case file.
     pub fn from_file(path: &Path) -> Result<Self> {
@@ -532,6 +536,7 @@ impl Case {
             }
             None => {}
         }
+        self.check_particle_count()?;
         self.validate_scheme()?;
         positive("time.end", self.time.end)?;
         non_negative("time.output_interval", self.time.output_interval)?;
@@ -553,6 +558,42 @@ impl Case {
                     format!("an axis index below {d}"),
                 ));
             }
+        }
+        Ok(())
+    }
+
+    /// Refuses a spacing that would ask for more particles than any machine holds
+    /// (before a single one is built): fluid blocks, tanks and wall boxes counted as
+    /// lattice boxes.
+    fn check_particle_count(&self) -> Result<()> {
+        let dx = self.dx();
+        let cells = |lo: &[f64], hi: &[f64], pad: f64| -> f64 {
+            lo.iter()
+                .zip(hi)
+                .map(|(l, h)| ((h - l + 2.0 * pad) / dx).round().max(0.0))
+                .product()
+        };
+        let fluid: f64 = self
+            .fluid_block
+            .iter()
+            .map(|b| cells(&b.lo, &b.hi, 0.0))
+            .sum();
+        let tanks: f64 = self
+            .tank
+            .iter()
+            .map(|t| cells(&t.lo, &t.hi, t.layers as f64 * dx) - cells(&t.lo, &t.hi, 0.0))
+            .sum();
+        let walls: f64 = self.wall.iter().map(|b| cells(&b.lo, &b.hi, 0.0)).sum();
+        let total = fluid + tanks + walls;
+        if total > MAX_PARTICLES {
+            return Err(SphError::invalid(
+                "particles.spacing",
+                self.particles.spacing,
+                format!(
+                    "a spacing giving at most {MAX_PARTICLES:.1e} particles (this one gives \
+                     about {total:.1e})"
+                ),
+            ));
         }
         Ok(())
     }
@@ -777,6 +818,15 @@ mod tests {
 
     fn error_of(text: &str) -> String {
         Case::from_toml_str(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn absurd_spacing_is_refused_before_building() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 1e-9"));
+        assert!(
+            e.starts_with("particles.spacing = 0.000000001: expected a spacing giving at most"),
+            "{e}"
+        );
     }
 
     #[test]

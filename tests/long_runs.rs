@@ -8,8 +8,8 @@ use sph_core::{Kind, Simulation};
 /// and the pressure error stays bounded (Antuono et al. 2010, 2012).
 #[test]
 fn hydrostatic_tank_holds_to_t_star_200() {
-    let (rho0, g, depth, dx) = (1000.0, 9.81, 1.0, 0.1);
-    let end = 200.0 * (depth / g as f64).sqrt();
+    let (rho0, g, depth, dx): (f64, f64, f64, f64) = (1000.0, 9.81, 1.0, 0.1);
+    let end: f64 = 200.0 * (depth / g).sqrt();
     let case = example_case(
         "hydrostatic_2d.toml",
         &[

@@ -19,26 +19,35 @@ pub fn refdata(name: &str) -> PathBuf {
 }
 
 /// Loads an example case after applying `overrides`, TOML snippets of the form
-/// `"table.key = value"` (or `"key = value"` at the top level).
+/// `"table.key = value"` (or `"key = value"` at the top level); a number in the path
+/// indexes an array of tables (`"tank.0.hi = [1.0, 2.0]"`).
 pub fn example_case(name: &str, overrides: &[&str]) -> Case {
     let text = std::fs::read_to_string(example(name)).expect("example case exists");
-    let mut table: toml::Table = text.parse().expect("example case is valid TOML");
+    let mut root = toml::Value::Table(text.parse().expect("example case is valid TOML"));
     for o in overrides {
         let (path, value) = o.split_once('=').expect("override is key = value");
         let value: toml::Table = format!("v = {}", value.trim())
             .parse()
             .expect("override value parses");
         let keys: Vec<&str> = path.trim().split('.').collect();
-        let mut t = &mut table;
+        let mut node = &mut root;
         for k in &keys[..keys.len() - 1] {
-            t = t
-                .entry(k.to_string())
-                .or_insert_with(|| toml::Value::Table(Default::default()))
-                .as_table_mut()
-                .expect("override path runs through tables");
+            node = match k.parse::<usize>() {
+                Ok(index) => &mut node.as_array_mut().expect("indexed path is an array")[index],
+                Err(_) => node
+                    .as_table_mut()
+                    .expect("override path runs through tables")
+                    .entry(k.to_string())
+                    .or_insert_with(|| toml::Value::Table(Default::default())),
+            };
         }
-        t.insert(keys[keys.len() - 1].to_string(), value["v"].clone());
+        node.as_table_mut()
+            .expect("override target is a table")
+            .insert(keys[keys.len() - 1].to_string(), value["v"].clone());
     }
+    let toml::Value::Table(table) = root else {
+        unreachable!("the root stays a table")
+    };
     Case::from_table(table).unwrap_or_else(|e| panic!("{name} with {overrides:?}: {e}"))
 }
 

@@ -221,6 +221,10 @@ fn summary<const D: usize>(
     );
     println!("max |Δρ/ρ0|     {:.3e}", sim.max_density_variation());
     println!(
+        "walls           {} fluid particles inside a wall at the end",
+        sim.wall_crossings()
+    );
+    println!(
         "energy          E_k+E_p+E_c: {:.6e} → {:.6e} J (change {:+.3e})",
         e0.total(),
         e1.total(),

@@ -7,6 +7,7 @@
 //! - Probes interpolate the fluid pressure with a Shepard-normalised kernel sum,
 //!   `p(x) = Σ_f p_f W(x - x_f) V_f / Σ_f W(x - x_f) V_f` (0 where no fluid is in reach).
 
+use crate::case::Case;
 use crate::domain::Domain;
 use crate::eos::LinearEos;
 use crate::equations::Model;
@@ -117,4 +118,51 @@ pub fn find_instability<const D: usize>(
                 )
             })
         })
+}
+
+/// Fluid particles inside a wall: past the first layer of wall particles (more than
+/// Δx/2 beyond a closed face of a tank, within its layers and below the last wall
+/// particles at an open face, over which fluid may pass), or deeper than Δx/2 inside
+/// a `[[wall]]` box. Zero in a sound run; dummy-particle walls do not forbid
+/// crossing, so this counts the failures.
+pub fn wall_crossings<const D: usize>(case: &Case, p: &Particles<D>) -> usize {
+    let dx = case.dx();
+    let inside = |x: &Vector<D>, lo: &[f64], hi: &[f64], margin: f64| {
+        (0..D).all(|d| x[d] > lo[d] + margin && x[d] < hi[d] - margin)
+    };
+    let in_tank_wall = |x: &Vector<D>, t: &crate::case::TankConfig| {
+        let pad = t.layers as f64 * dx;
+        let default_open = [format!("+{}", ["x", "y", "z"][D - 1])];
+        let open: Vec<(usize, i8)> = t
+            .open
+            .as_deref()
+            .unwrap_or(&default_open)
+            .iter()
+            .filter_map(|f| crate::case::face_axis(f, D))
+            .collect();
+        let within_layers = (0..D).all(|d| x[d] > t.lo[d] - pad && x[d] < t.hi[d] + pad);
+        let past_closed_face = (0..D).any(|d| {
+            let below = x[d] < t.lo[d] - 0.5 * dx && !open.contains(&(d, -1));
+            let above = x[d] > t.hi[d] + 0.5 * dx && !open.contains(&(d, 1));
+            below || above
+        });
+        // above the last wall particles at an open face: passing over the wall's edge
+        let beyond_open = open.iter().any(|&(d, s)| {
+            if s > 0 {
+                x[d] > t.hi[d] - 0.5 * dx
+            } else {
+                x[d] < t.lo[d] + 0.5 * dx
+            }
+        });
+        within_layers && past_closed_face && !beyond_open
+    };
+    (0..p.len())
+        .into_par_iter()
+        .filter(|&i| p.kind[i] == Kind::Fluid)
+        .filter(|&i| {
+            let x = &p.x[i];
+            case.tank.iter().any(|t| in_tank_wall(x, t))
+                || case.wall.iter().any(|w| inside(x, &w.lo, &w.hi, 0.5 * dx))
+        })
+        .count()
 }

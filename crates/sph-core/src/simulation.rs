@@ -312,6 +312,11 @@ impl<const D: usize> Simulation<D> {
         })
     }
 
+    /// Fluid particles inside a wall now (see [`diagnostics::wall_crossings`]).
+    pub fn wall_crossings(&self) -> usize {
+        diagnostics::wall_crossings(&self.case, &self.particles)
+    }
+
     pub fn surge_front(&self, axis: usize) -> f64 {
         diagnostics::surge_front(&self.particles, axis)
     }

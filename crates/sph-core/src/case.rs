@@ -132,6 +132,16 @@ pub struct TankConfig {
     pub lid_velocity: Option<Vec<f64>>,
 }
 
+impl TankConfig {
+    /// The open faces as (axis, side ±1); the top face (last axis, +) by default.
+    pub fn open_faces(&self, dim: usize) -> Vec<(usize, i8)> {
+        match &self.open {
+            Some(faces) => faces.iter().filter_map(|f| face_axis(f, dim)).collect(),
+            None => vec![(dim - 1, 1)],
+        }
+    }
+}
+
 fn default_layers() -> usize {
     3
 }
@@ -483,10 +493,7 @@ impl Case {
                 let key = format!("tank[{k}].lid_velocity");
                 components(&key, v, d)?;
                 let top = ["+x", "+y", "+z"][d - 1];
-                let top_open = match &t.open {
-                    Some(faces) => faces.iter().any(|f| f == top),
-                    None => true,
-                };
+                let top_open = t.open_faces(d).contains(&(d - 1, 1));
                 if top_open || v[d - 1] != 0.0 {
                     return Err(SphError::invalid(
                         key,

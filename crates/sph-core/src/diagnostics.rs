@@ -130,16 +130,9 @@ pub fn wall_crossings<const D: usize>(case: &Case, p: &Particles<D>) -> usize {
     let inside = |x: &Vector<D>, lo: &[f64], hi: &[f64], margin: f64| {
         (0..D).all(|d| x[d] > lo[d] + margin && x[d] < hi[d] - margin)
     };
-    let in_tank_wall = |x: &Vector<D>, t: &crate::case::TankConfig| {
+    let tanks: Vec<_> = case.tank.iter().map(|t| (t, t.open_faces(D))).collect();
+    let in_tank_wall = |x: &Vector<D>, (t, open): &(&crate::case::TankConfig, Vec<(usize, i8)>)| {
         let pad = t.layers as f64 * dx;
-        let default_open = [format!("+{}", ["x", "y", "z"][D - 1])];
-        let open: Vec<(usize, i8)> = t
-            .open
-            .as_deref()
-            .unwrap_or(&default_open)
-            .iter()
-            .filter_map(|f| crate::case::face_axis(f, D))
-            .collect();
         let within_layers = (0..D).all(|d| x[d] > t.lo[d] - pad && x[d] < t.hi[d] + pad);
         let past_closed_face = (0..D).any(|d| {
             let below = x[d] < t.lo[d] - 0.5 * dx && !open.contains(&(d, -1));
@@ -161,7 +154,7 @@ pub fn wall_crossings<const D: usize>(case: &Case, p: &Particles<D>) -> usize {
         .filter(|&i| p.kind[i] == Kind::Fluid)
         .filter(|&i| {
             let x = &p.x[i];
-            case.tank.iter().any(|t| in_tank_wall(x, t))
+            tanks.iter().any(|tank| in_tank_wall(x, tank))
                 || case.wall.iter().any(|w| inside(x, &w.lo, &w.hi, 0.5 * dx))
         })
         .count()

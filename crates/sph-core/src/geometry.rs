@@ -2,7 +2,7 @@
 //! wall boxes as layers of fixed dummy particles, the initial density (hydrostatic
 //! or from an analytic field), masses `m_i = ρ_i V0`, and the sound speed.
 
-use crate::case::{face_axis, BoxConfig, Case, InitialField, Shape};
+use crate::case::{BoxConfig, Case, InitialField, Shape};
 use crate::domain::Domain;
 use crate::eos::LinearEos;
 use crate::error::{Result, SphError};
@@ -220,14 +220,7 @@ fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector<D>)> {
     for t in &case.tank {
         let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
         let pad = Vector::<D>::repeat(t.layers as f64 * dx);
-        let default_open = [format!("+{}", ["x", "y", "z"][D - 1])];
-        let open: Vec<(usize, i8)> = t
-            .open
-            .as_deref()
-            .unwrap_or(&default_open)
-            .iter()
-            .filter_map(|f| face_axis(f, D))
-            .collect();
+        let open = t.open_faces(D);
         let lid: Vector<D> = t
             .lid_velocity
             .as_deref()

@@ -22,6 +22,7 @@ pub mod neighbours;
 pub mod output;
 pub mod particles;
 pub mod renormalisation;
+pub mod restart;
 pub mod scheme;
 pub mod shifting;
 pub mod simulation;

@@ -88,6 +88,14 @@ impl<const D: usize> Grid<D> {
         }
     }
 
+    /// The grid for positions `x` and the stable order that sorts them by cell.
+    fn sorted(x: &[Vector<D>], domain: &Domain<D>, radius: f64) -> (Self, Vec<usize>) {
+        let mut grid = Grid::new(x, domain, radius);
+        let keys: Vec<usize> = x.iter().map(|p| grid.flat(&grid.coords(p))).collect();
+        let order = counting_sort(&keys, grid.n_cells(), &mut grid.cell_start);
+        (grid, order)
+    }
+
     /// Cell coordinates of a point, clamped into the grid (open directions) or wrapped (periodic).
     fn coords(&self, p: &Vector<D>) -> [usize; D] {
         let mut c = [0usize; D];
@@ -150,30 +158,64 @@ impl<const D: usize> NeighbourList<D> {
         skin: f64,
     ) -> (Self, Vec<usize>) {
         let radius = support + skin;
-        let mut grid = Grid::new(&particles.x, domain, radius);
-        let keys: Vec<usize> = particles
-            .x
-            .iter()
-            .map(|p| grid.flat(&grid.coords(p)))
-            .collect();
-        let order = counting_sort(&keys, grid.n_cells(), &mut grid.cell_start);
+        let (grid, order) = Grid::sorted(&particles.x, domain, radius);
         particles.permute(&order);
         let lists = gather_lists(particles, domain, &grid, radius);
+        let list = Self::from_lists(lists, radius, skin, grid, particles.x.clone());
+        (list, order)
+    }
+
+    /// Packs per-particle lists into compressed rows.
+    fn from_lists(
+        lists: Vec<Vec<u32>>,
+        radius: f64,
+        skin: f64,
+        grid: Grid<D>,
+        x_ref: Vec<Vector<D>>,
+    ) -> Self {
         let mut offsets = Vec::with_capacity(lists.len() + 1);
         offsets.push(0);
         for l in &lists {
             offsets.push(offsets.last().unwrap() + l.len());
         }
-        let indices = lists.concat();
-        let list = Self {
+        Self {
             offsets,
-            indices,
+            indices: lists.concat(),
             radius,
             skin,
             grid,
-            x_ref: particles.x.clone(),
+            x_ref,
+        }
+    }
+
+    /// Builds again the lists of an earlier [`Self::build`] whose positions were
+    /// `reference` (a restarted run). The particles (of kinds `kind`) must still be in
+    /// the order that build left them, so the rebuilt lists match it entry for entry;
+    /// returns `None` when they are not.
+    pub fn restore(
+        kind: &[Kind],
+        domain: &Domain<D>,
+        support: f64,
+        skin: f64,
+        reference: Vec<Vector<D>>,
+    ) -> Option<Self> {
+        let radius = support + skin;
+        let (grid, order) = Grid::sorted(&reference, domain, radius);
+        if order.iter().enumerate().any(|(k, &o)| k != o) {
+            return None;
+        }
+        let probe = Particles {
+            x: reference,
+            kind: kind.to_vec(),
+            ..Default::default()
         };
-        (list, order)
+        let lists = gather_lists(&probe, domain, &grid, radius);
+        Some(Self::from_lists(lists, radius, skin, grid, probe.x))
+    }
+
+    /// Positions at the last build, in the current order.
+    pub fn reference_positions(&self) -> &[Vector<D>] {
+        &self.x_ref
     }
 
     /// Neighbours of particle i (within `R + s` at the last build).

@@ -78,6 +78,73 @@ impl Output {
         })
     }
 
+    /// Reopens the folder of a run that continues from a restart written after its
+    /// first `snapshots` snapshots: they stay listed in the XDMF index and the next one
+    /// continues the numbering. Snapshots numbered from `snapshots` on (written past an
+    /// older restart) are refused unless `overwrite`, which removes them.
+    pub fn resume(dir: &Path, snapshots: u64, overwrite: bool) -> Result<Self> {
+        fs::create_dir_all(dir).map_err(|e| SphError::output(dir, e))?;
+        let later: Vec<PathBuf> = (snapshots..)
+            .map(|k| dir.join(snapshot_name(k)))
+            .take_while(|f| f.exists())
+            .collect();
+        if let Some(first) = later.first() {
+            if !overwrite {
+                return Err(SphError::output(
+                    first,
+                    "snapshot from after the restart point exists; choose another --out or pass --force to replace the later snapshots",
+                ));
+            }
+            for f in &later {
+                fs::remove_file(f).map_err(|e| SphError::output(f, e))?;
+            }
+        }
+        let mut entries = Vec::new();
+        for k in 0..snapshots {
+            let file = snapshot_name(k);
+            let path = dir.join(&file);
+            if path.exists() {
+                entries.push(read_entry(&path, file)?);
+            }
+        }
+        let out = Self {
+            dir: dir.to_path_buf(),
+            entries,
+            series: None,
+        };
+        out.write_text("particles.xmf", &xdmf(&out.entries))?;
+        Ok(out)
+    }
+
+    /// Continues `timeseries.csv` from a restart at `time`, dropping rows after it
+    /// (written past an older restart), or starts it with `columns`.
+    pub fn resume_series(&mut self, columns: &[String], time: f64) -> Result<()> {
+        let path = self.dir.join("timeseries.csv");
+        let Ok(text) = fs::read_to_string(&path) else {
+            return self.start_series(columns);
+        };
+        let kept: Vec<&str> = text
+            .lines()
+            .enumerate()
+            .filter(|(k, line)| {
+                *k == 0
+                    || line
+                        .split(',')
+                        .next()
+                        .and_then(|t| t.parse::<f64>().ok())
+                        .is_some_and(|t| t <= time * (1.0 + 1e-9))
+            })
+            .map(|(_, line)| line)
+            .collect();
+        self.write_text("timeseries.csv", &(kept.join("\n") + "\n"))?;
+        let file = fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| SphError::output(&path, e))?;
+        self.series = Some(BufWriter::new(file));
+        Ok(())
+    }
+
     pub fn dir(&self) -> &Path {
         &self.dir
     }
@@ -98,7 +165,11 @@ impl Output {
         time: f64,
         step: u64,
     ) -> Result<PathBuf> {
-        let name = format!("particles_{:06}.h5", self.entries.len());
+        let next = self
+            .entries
+            .last()
+            .map_or(0, |e| snapshot_index(&e.file) + 1);
+        let name = snapshot_name(next);
         let path = self.dir.join(&name);
         write_snapshot(&path, p, extras, time, step)?;
         self.entries.push(Entry::new(name, time, p.len(), extras));
@@ -127,6 +198,32 @@ impl Output {
         }
         Ok(())
     }
+}
+
+fn snapshot_name(k: u64) -> String {
+    format!("particles_{k:06}.h5")
+}
+
+fn snapshot_index(name: &str) -> u64 {
+    name.trim_start_matches("particles_")
+        .trim_end_matches(".h5")
+        .parse()
+        .unwrap_or(0)
+}
+
+/// The index entry of an existing snapshot file.
+fn read_entry(path: &Path, file: String) -> Result<Entry> {
+    let read = || -> hdf5::Result<Entry> {
+        let h5 = hdf5::File::open(path)?;
+        Ok(Entry {
+            time: h5.attr("time")?.read_scalar()?,
+            n: h5.dataset("id")?.size(),
+            surface: h5.dataset("free_surface").is_ok(),
+            shift: h5.dataset("shifting_velocity").is_ok(),
+            file,
+        })
+    };
+    read().map_err(|e| SphError::output(path, format!("unreadable snapshot ({e})")))
 }
 
 /// Writes `f(tmp)` to a temporary sibling of `path`, then renames it into place.

@@ -12,6 +12,7 @@ use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::neighbours::NeighbourList;
 use crate::output::Extras;
 use crate::particles::{Particles, Vector};
+use crate::restart::Checkpoint;
 use crate::scheme::{build_model, viscosity_k, wall_viscous_weight};
 use crate::timestep::TimeStepControl;
 use crate::viscosity::equivalent_nu;
@@ -103,6 +104,74 @@ impl<const D: usize> Simulation<D> {
         };
         sim.rebuild(0.0);
         sim.state_changed();
+        Ok(sim)
+    }
+
+    /// The state the next step depends on, for a restart file (see [`crate::restart`]).
+    pub fn checkpoint(&self) -> Result<Checkpoint<D>> {
+        let case_toml = toml::to_string(&self.case)
+            .map_err(|e| SphError::output("restart", format!("case not serialisable: {e}")))?;
+        Ok(Checkpoint {
+            case_toml,
+            particles: self.particles.clone(),
+            list_positions: self.list.reference_positions().to_vec(),
+            skin: self.list.skin,
+            time: self.time,
+            dt: self.dt,
+            counters: self.counters,
+            last_acceleration: self.last_acceleration,
+            budget: self.budget,
+            shift_velocity: self.shift_velocity.clone(),
+        })
+    }
+
+    /// Continues a run from `checkpoint`, to `end` when given, else to the case's end
+    /// time. The next step is the one the checkpointed run would have taken, bit for bit.
+    pub fn from_checkpoint(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
+        let mut case = Case::from_toml_str(&checkpoint.case_toml)?;
+        if let Some(end) = end {
+            if !(end > checkpoint.time) {
+                return Err(SphError::invalid(
+                    "time.end",
+                    end,
+                    format!("a time after the restart time {} s", checkpoint.time),
+                ));
+            }
+            case.time.end = end;
+        }
+        let mut sim = Self::new(case)?;
+        let c = checkpoint;
+        let n = sim.particles.len();
+        let p = &c.particles;
+        let lengths = [
+            p.x.len(),
+            p.u.len(),
+            p.rho.len(),
+            p.p.len(),
+            p.mass.len(),
+            p.kind.len(),
+            p.id.len(),
+            p.u_wall_visc.len(),
+            c.list_positions.len(),
+        ];
+        let corrupt = |what: &str| SphError::output("restart", what.to_string());
+        if lengths.iter().any(|&l| l != n) {
+            return Err(corrupt(
+                "particle arrays do not match the case's particle count",
+            ));
+        }
+        let support = sim.model.support_radius();
+        sim.list = NeighbourList::restore(&p.kind, &sim.domain, support, c.skin, c.list_positions)
+            .ok_or_else(|| corrupt("particles are not in the order of their neighbour lists"))?;
+        sim.particles = c.particles;
+        sim.time = c.time;
+        sim.dt = c.dt;
+        sim.counters = c.counters;
+        sim.last_acceleration = c.last_acceleration;
+        sim.budget = c.budget;
+        if sim.shift_velocity.is_some() {
+            sim.shift_velocity = c.shift_velocity;
+        }
         Ok(sim)
     }
 

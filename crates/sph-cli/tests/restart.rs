@@ -1,0 +1,259 @@
+//! Nothing lost when a run is stopped: SIGINT/SIGTERM leave a last snapshot and a
+//! restart file, `--restart` continues bit for bit, and a killed run leaves only
+//! complete snapshots.
+
+mod common;
+
+use common::{cli, scratch, small_case};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A dam break at Δx = 0.03 m (800 fluid particles) long enough to be interrupted.
+fn long_case(dir: &Path, end: f64) -> String {
+    let case = small_case(dir, "");
+    let text = std::fs::read_to_string(&case)
+        .unwrap()
+        .replace("spacing = 0.05 ", "spacing = 0.03 ")
+        .replace("end = 0.05", &format!("end = {end}"));
+    std::fs::write(&case, text).unwrap();
+    case
+}
+
+fn spawn(args: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_sph-cli"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("sph-cli starts")
+}
+
+/// Waits (at most a minute) until `file` exists.
+fn wait_for(file: &Path) {
+    let start = Instant::now();
+    while !file.exists() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "{file:?} never came"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+fn send(child: &Child, signal: &str) {
+    let status = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+}
+
+/// The snapshot files of a run folder, in order.
+fn snapshots(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            name.starts_with("particles_") && name.ends_with(".h5")
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+fn dataset(file: &hdf5::File, name: &str) -> Vec<f64> {
+    file.dataset(name).unwrap().read_raw().unwrap()
+}
+
+/// Asserts that two snapshots hold the same state, bit for bit.
+fn assert_same_state(a: &Path, b: &Path) {
+    let (fa, fb) = (hdf5::File::open(a).unwrap(), hdf5::File::open(b).unwrap());
+    let attr = |f: &hdf5::File, n: &str| -> f64 { f.attr(n).unwrap().read_scalar().unwrap() };
+    assert_eq!(attr(&fa, "time").to_bits(), attr(&fb, "time").to_bits());
+    for name in ["position", "velocity", "density", "pressure"] {
+        let (va, vb) = (dataset(&fa, name), dataset(&fb, name));
+        assert_eq!(va.len(), vb.len(), "{name}");
+        let differ = va
+            .iter()
+            .zip(&vb)
+            .filter(|(x, y)| x.to_bits() != y.to_bits());
+        assert_eq!(differ.count(), 0, "{name} differs between {a:?} and {b:?}");
+    }
+    let ids = |f: &hdf5::File| -> Vec<u32> { f.dataset("id").unwrap().read_raw().unwrap() };
+    assert_eq!(ids(&fa), ids(&fb));
+}
+
+#[test]
+fn a_run_stopped_by_sigterm_continues_bit_for_bit() {
+    let dir = scratch("restart");
+    let case = long_case(&dir, 1.0);
+    let (whole, parts) = (dir.join("whole"), dir.join("parts"));
+    let out = cli(&["run", &case, "--out", whole.to_str().unwrap(), "--quiet"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    let child = spawn(&["run", &case, "--out", parts.to_str().unwrap(), "--quiet"]);
+    wait_for(&parts.join("particles_000003.h5"));
+    send(&child, "-TERM");
+    let stopped = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&stopped.stderr);
+    assert_eq!(stopped.status.code(), Some(143), "{err}");
+    assert!(
+        err.starts_with("error: interrupted by SIGTERM at t = "),
+        "{err}"
+    );
+    let restart = parts.join("restart.h5");
+    assert!(
+        err.contains(&format!("--restart {}", restart.display())),
+        "{err}"
+    );
+    let last = snapshots(&parts).pop().unwrap();
+    let stopped_at: f64 = hdf5::File::open(&last)
+        .unwrap()
+        .attr("time")
+        .unwrap()
+        .read_scalar()
+        .unwrap();
+    assert!(
+        stopped_at < 1.0,
+        "the signal came after the end ({stopped_at} s)"
+    );
+
+    let resumed = cli(&["run", "--restart", restart.to_str().unwrap(), "--quiet"]);
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert_same_state(
+        snapshots(&whole).last().unwrap(),
+        snapshots(&parts).last().unwrap(),
+    );
+    // The time series carries on where it stopped: the same rows as the whole run.
+    let rows = |d: &Path| std::fs::read_to_string(d.join("timeseries.csv")).unwrap();
+    assert_eq!(rows(&whole).lines().count(), rows(&parts).lines().count());
+    // Every snapshot of both legs is in the index.
+    let xmf = std::fs::read_to_string(parts.join("particles.xmf")).unwrap();
+    assert_eq!(xmf.matches("<Time ").count(), snapshots(&parts).len());
+}
+
+#[test]
+fn a_finished_run_extends_with_until_and_never_overwrites_later_output() {
+    let dir = scratch("extend");
+    let case = long_case(&dir, 0.1);
+    let run = dir.join("run");
+    let out = cli(&["run", &case, "--out", run.to_str().unwrap(), "--quiet"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let restart = run.join("restart.h5");
+    let kept = dir.join("restart_at_0.1.h5");
+    std::fs::copy(&restart, &kept).unwrap();
+    let n_before = snapshots(&run).len();
+
+    let early = cli(&[
+        "run",
+        "--restart",
+        kept.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--until",
+        "0.05",
+    ]);
+    assert_eq!(early.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&early.stderr);
+    assert!(
+        err.starts_with("error: time.end = 0.05: expected a time after the restart time"),
+        "{err}"
+    );
+
+    let more = cli(&[
+        "run",
+        "--restart",
+        restart.to_str().unwrap(),
+        "--until",
+        "0.2",
+        "--quiet",
+    ]);
+    assert!(
+        more.status.success(),
+        "{}",
+        String::from_utf8_lossy(&more.stderr)
+    );
+    let files = snapshots(&run);
+    assert!(files.len() > n_before);
+    let t_end: f64 = hdf5::File::open(files.last().unwrap())
+        .unwrap()
+        .attr("time")
+        .unwrap()
+        .read_scalar()
+        .unwrap();
+    assert!((t_end - 0.2).abs() < 1e-12, "{t_end}");
+
+    // The copy from t = 0.1 would write over the snapshots after it: refused ...
+    let stale = cli(&[
+        "run",
+        "--restart",
+        kept.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(stale.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&stale.stderr).contains("--force"));
+    assert_eq!(snapshots(&run), files);
+    // ... unless forced, which replaces them and drops the later time-series rows.
+    let forced = cli(&[
+        "run",
+        "--restart",
+        kept.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--force",
+        "--quiet",
+        "--until",
+        "0.15",
+    ]);
+    assert!(
+        forced.status.success(),
+        "{}",
+        String::from_utf8_lossy(&forced.stderr)
+    );
+    let series = std::fs::read_to_string(run.join("timeseries.csv")).unwrap();
+    let times: Vec<f64> = series
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(
+        times.windows(2).all(|w| w[1] > w[0]),
+        "rows in time order, none repeated"
+    );
+    assert!((times.last().unwrap() - 0.15).abs() < 1e-9);
+}
+
+#[test]
+fn a_killed_run_leaves_only_complete_snapshots() {
+    let dir = scratch("killed");
+    let case = long_case(&dir, 1.0);
+    let run = dir.join("run");
+    let child = spawn(&["run", &case, "--out", run.to_str().unwrap(), "--quiet"]);
+    wait_for(&run.join("particles_000004.h5"));
+    send(&child, "-KILL");
+    child.wait_with_output().unwrap();
+    let files = snapshots(&run);
+    assert!(files.len() >= 5);
+    for f in &files {
+        let h5 = hdf5::File::open(f).unwrap_or_else(|e| panic!("{f:?}: {e}"));
+        assert_eq!(dataset(&h5, "density").len(), 800 + 699, "{f:?}");
+    }
+    let xmf = std::fs::read_to_string(run.join("particles.xmf")).unwrap();
+    assert!(xmf.trim_end().ends_with("</Xdmf>"), "the index is whole");
+}

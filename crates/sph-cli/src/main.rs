@@ -250,7 +250,7 @@ fn stop_signal() -> Result<Arc<AtomicUsize>> {
     let which = Arc::new(AtomicUsize::new(0));
     let pending = Arc::new(AtomicBool::new(false));
     for sig in [SIGINT, SIGTERM] {
-        flag::register_conditional_shutdown(sig, 128 + sig as i32, Arc::clone(&pending))?;
+        flag::register_conditional_shutdown(sig, 128 + sig, Arc::clone(&pending))?;
         flag::register(sig, Arc::clone(&pending))?;
         flag::register_usize(sig, Arc::clone(&which), sig as usize)?;
     }

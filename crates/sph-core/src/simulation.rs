@@ -130,7 +130,7 @@ impl<const D: usize> Simulation<D> {
     pub fn from_checkpoint(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
         let mut case = Case::from_toml_str(&checkpoint.case_toml)?;
         if let Some(end) = end {
-            if !(end > checkpoint.time) {
+            if end.is_nan() || end <= checkpoint.time {
                 return Err(SphError::invalid(
                     "time.end",
                     end,

@@ -3,7 +3,9 @@
 
 mod common;
 
-use common::{cli, example, scratch, small_case};
+use common::{cli, cli_within, example, scratch, small_case};
+use std::path::Path;
+use std::time::Duration;
 
 #[test]
 fn every_example_passes_check() {
@@ -121,23 +123,87 @@ fn run_writes_snapshots_and_series_and_never_overwrites() {
     assert!(forced.status.success());
 }
 
-#[test]
-fn a_hopeless_case_stops_with_a_message_and_a_final_snapshot() {
-    // c0 far too small: the column collapses into a compressible heap.
-    let dir = scratch("unstable");
+/// Runs a hopeless variant of the small dam break (`edit` applied to its text) and
+/// checks that the guard stops it, within a minute, with the expected reason, a final
+/// snapshot and exit code 3.
+fn assert_stopped_by_the_guard(name: &str, edit: impl Fn(String) -> String, reason: &str) {
+    let dir = scratch(name);
     let case = small_case(&dir, "");
-    let text = std::fs::read_to_string(&case).unwrap().replace(
-        "gravity = [0.0, -9.81]",
-        "gravity = [0.0, -9.81]\nsound_speed = 0.5",
-    );
-    std::fs::write(&case, text.replace("end = 0.05", "end = 2.0")).unwrap();
+    let text = std::fs::read_to_string(&case).unwrap();
+    std::fs::write(&case, edit(text.replace("end = 0.05", "end = 2.0"))).unwrap();
     let out_dir = dir.join("out");
-    let out = cli(&["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"]);
+    let out = cli_within(
+        &["run", &case, "--out", out_dir.to_str().unwrap(), "--quiet"],
+        Duration::from_secs(60),
+    );
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(3), "{err}");
-    assert!(err.starts_with("error: unstable at t = "), "{err}");
-    assert!(err.contains("particle"), "{err}");
+    assert_eq!(out.status.code(), Some(3), "{name}: {err}");
+    assert!(err.starts_with("error: unstable at t = "), "{name}: {err}");
     assert!(
-        out_dir.join("particles_000001.h5").is_file() || out_dir.join("particles.xmf").is_file()
+        err.contains(reason) && err.contains("at particle"),
+        "{name}: {err}"
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let last = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("last snapshot"))
+        .unwrap_or_else(|| panic!("{name}: no last snapshot in {stdout}"));
+    let file = last.trim().split(' ').next().unwrap();
+    assert!(Path::new(file).is_file(), "{name}: {file}");
+    assert!(
+        !out_dir.join("restart.h5").exists(),
+        "{name}: no restart from a blown-up state"
+    );
+}
+
+#[test]
+fn hopeless_cases_stop_with_the_guard_message_and_a_final_snapshot() {
+    // c0 far too small: the column collapses into a compressible heap.
+    assert_stopped_by_the_guard(
+        "slow_sound",
+        |t| {
+            t.replace(
+                "gravity = [0.0, -9.81]",
+                "gravity = [0.0, -9.81]\nsound_speed = 0.5",
+            )
+        },
+        "density variation",
+    );
+    // Δt forced far beyond the symplectic scheme's acoustic limit.
+    assert_stopped_by_the_guard(
+        "courant_3",
+        |t| {
+            t.replace("integrator = \"rk4\"", "integrator = \"symplectic\"")
+                .replace("cfl = 1.5", "cfl = 3.0")
+        },
+        "density variation",
+    );
+    // A block thrown at 2.5 times the sound speed.
+    assert_stopped_by_the_guard(
+        "supersonic",
+        |t| {
+            t.replace("hi = [1.2, 0.6]", "hi = [1.2, 0.6]\nvelocity = [50.0, 0.0]")
+                .replace(
+                    "gravity = [0.0, -9.81]",
+                    "gravity = [0.0, -9.81]\nsound_speed = 20.0",
+                )
+        },
+        "beyond the limit 2.0000e1 m/s",
+    );
+}
+
+#[test]
+fn overlapping_fluid_blocks_are_refused() {
+    let dir = scratch("doubled");
+    let case = small_case(
+        &dir,
+        "\n[[fluid_block]]\nlo = [0.0, 0.0]\nhi = [0.3, 0.3]\n",
+    );
+    let out = cli(&["check", &case]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: fluid_block = a fluid particle at [0.025, 0.025]: expected fluid blocks that do not overlap"),
+        "{err}"
     );
 }

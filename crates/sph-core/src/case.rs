@@ -337,14 +337,24 @@ pub struct StabilityConfig {
     /// Largest admissible |ρ/ρ0 - 1| before the run is stopped.
     #[serde(default = "default_max_density_variation")]
     pub max_density_variation: f64,
+    /// Largest admissible Mach number |u|/c0 of a fluid particle. A weakly-compressible
+    /// model is void long before Ma = 1; a particle that fast has been thrown out by a
+    /// blow-up, and flying on it would stretch the neighbour grid without bound.
+    #[serde(default = "default_max_mach")]
+    pub max_mach: f64,
 }
 
 impl Default for StabilityConfig {
     fn default() -> Self {
         Self {
             max_density_variation: default_max_density_variation(),
+            max_mach: default_max_mach(),
         }
     }
+}
+
+fn default_max_mach() -> f64 {
+    1.0
 }
 
 fn default_max_density_variation() -> f64 {
@@ -551,6 +561,7 @@ impl Case {
             "stability.max_density_variation",
             self.stability.max_density_variation,
         )?;
+        positive("stability.max_mach", self.stability.max_mach)?;
         if let Some(i) = self.diagnostics.interval {
             positive("diagnostics.interval", i)?;
         }

@@ -94,12 +94,14 @@ pub fn surge_front<const D: usize>(p: &Particles<D>, axis: usize) -> f64 {
         .reduce(|| f64::MIN, f64::max)
 }
 
-/// The first fluid particle that is not finite or whose density left `[ρ0(1-l), ρ0(1+l)]`,
-/// with a description of what went wrong.
+/// The first fluid particle that is not finite, whose speed passed `max_speed` or
+/// whose density left `[ρ0(1-l), ρ0(1+l)]`, with a description of what
+/// went wrong.
 pub fn find_instability<const D: usize>(
     p: &Particles<D>,
     rho0: f64,
     limit: f64,
+    max_speed: f64,
 ) -> Option<(usize, String)> {
     (0..p.len())
         .into_par_iter()
@@ -109,6 +111,13 @@ pub fn find_instability<const D: usize>(
                 p.x[i].iter().chain(p.u[i].iter()).all(|v| v.is_finite()) && p.rho[i].is_finite();
             if !finite {
                 return Some((i, "non-finite position, velocity or density".to_string()));
+            }
+            let speed = p.u[i].norm();
+            if speed > max_speed {
+                let why = format!(
+                    "speed {speed:.4e} m/s beyond the limit {max_speed:.4e} m/s (stability.max_mach × c0)"
+                );
+                return Some((i, why));
             }
             let var = p.rho[i] / rho0 - 1.0;
             (var.abs() > limit).then(|| {

@@ -249,12 +249,13 @@ fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector<D>)> {
     points
 }
 
-/// No fluid particle may sit closer than Δx/2 to a wall particle.
+/// No fluid particle may sit closer than Δx/2 to another particle: a fluid particle
+/// in a wall, or fluid blocks that overlap (doubled particles), is an input error.
 fn check_overlap<const D: usize>(particles: &Particles<D>, dx: f64) -> Result<()> {
     let cell = |x: &Vector<D>| -> [i64; D] { std::array::from_fn(|d| (x[d] / dx).floor() as i64) };
-    let mut walls: HashMap<[i64; D], Vec<usize>> = HashMap::new();
-    for i in (0..particles.len()).filter(|&i| particles.kind[i] == Kind::Wall) {
-        walls.entry(cell(&particles.x[i])).or_default().push(i);
+    let mut cells: HashMap<[i64; D], Vec<usize>> = HashMap::new();
+    for i in 0..particles.len() {
+        cells.entry(cell(&particles.x[i])).or_default().push(i);
     }
     let min = 0.5 * dx * (1.0 - 1e-6);
     for i in (0..particles.len()).filter(|&i| particles.kind[i] == Kind::Fluid) {
@@ -266,23 +267,30 @@ fn check_overlap<const D: usize>(particles: &Particles<D>, dx: f64) -> Result<()
                 *k += (rem % 3) as i64 - 1;
                 rem /= 3;
             }
-            for &w in walls.get(&key).into_iter().flatten() {
-                let r = (particles.x[i] - particles.x[w]).norm();
-                if r < min {
-                    return Err(SphError::invalid(
-                        "fluid_block",
-                        format!("a fluid particle at {:?}", particles.x[i].as_slice()),
-                        format!(
-                            "fluid clear of walls (it lies {r:.3e} m from the wall particle at {:?}; \
-                             keep at least Δx/2)",
-                            particles.x[w].as_slice()
-                        ),
-                    ));
+            for &j in cells.get(&key).into_iter().flatten() {
+                let r = (particles.x[i] - particles.x[j]).norm();
+                if j != i && r < min {
+                    return Err(overlap_error(particles, i, j, r));
                 }
             }
         }
     }
     Ok(())
+}
+
+fn overlap_error<const D: usize>(p: &Particles<D>, i: usize, j: usize, r: f64) -> SphError {
+    let (other, what) = match p.kind[j] {
+        Kind::Wall => ("wall particle", "fluid clear of walls"),
+        Kind::Fluid => ("fluid particle", "fluid blocks that do not overlap"),
+    };
+    SphError::invalid(
+        "fluid_block",
+        format!("a fluid particle at {:?}", p.x[i].as_slice()),
+        format!(
+            "{what} (it lies {r:.3e} m from the {other} at {:?}; keep at least Δx/2)",
+            p.x[j].as_slice()
+        ),
+    )
 }
 
 fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Domain<D>> {

@@ -323,8 +323,10 @@ impl<const D: usize> Simulation<D> {
 
     fn check_stability(&self) -> Result<()> {
         let eos = self.physics().eos;
-        let limit = self.case.stability.max_density_variation;
-        match diagnostics::find_instability(&self.particles, eos.rho0, limit) {
+        let guard = &self.case.stability;
+        let max_speed = guard.max_mach * eos.c0;
+        let limit = guard.max_density_variation;
+        match diagnostics::find_instability(&self.particles, eos.rho0, limit, max_speed) {
             None => Ok(()),
             Some((i, reason)) => Err(SphError::Unstable {
                 time: self.time,

@@ -345,6 +345,12 @@ impl PySimulation {
         each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.kind, |k| k as u8))
     }
 
+    /// Fluid particles inside a wall now: past the first layer of wall particles of a
+    /// closed tank face, or deeper than Δx/2 in a ``[[wall]]`` box. Zero in a sound run.
+    fn wall_crossings(&self) -> usize {
+        each!(&self.solver, s => s.wall_crossings())
+    }
+
     /// Energies of the fluid [J] (per unit depth in 2D): ``kinetic``, ``potential``,
     /// ``internal`` (compressible, SCHEME.md §10), ``total`` (their sum) and
     /// ``dissipated``: the energy taken out so far by viscosity, density diffusion and

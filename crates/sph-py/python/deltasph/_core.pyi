@@ -88,6 +88,8 @@ class Simulation:
     @property
     def kind(self) -> npt.NDArray[np.uint8]:
         """0 fluid, 1 wall, shape (N,)."""
+    def wall_crossings(self) -> int:
+        """Fluid particles inside a wall now (zero in a sound run)."""
     def energies(self) -> dict[str, Optional[float]]:
         """``kinetic``, ``potential``, ``internal``, ``total`` and ``dissipated`` [J].
 

@@ -108,6 +108,12 @@ fn dam_break_without_viscosity_to_t_star_20_closes_its_energy_balance() {
         100.0 * worst_growth
     );
     assert!(worst_residual < 0.02, "budget residual {worst_residual}");
-    assert!(worst_growth < 0.02, "E_k + E_p + E_c grew by {worst_growth}");
-    assert!(lost > 0.5, "the sloshing has settled: most available energy is gone ({lost})");
+    assert!(
+        worst_growth < 0.02,
+        "E_k + E_p + E_c grew by {worst_growth}"
+    );
+    assert!(
+        lost > 0.5,
+        "the sloshing has settled: most available energy is gone ({lost})"
+    );
 }

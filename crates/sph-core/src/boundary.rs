@@ -7,6 +7,15 @@
 //! walls drop the wall-fluid viscous interaction instead. Walls do not accelerate
 //! (`a_w = 0`): they are at rest or slide in their own plane with a constant `u_w`
 //! (a lid); a wall particle with no fluid neighbour takes p = 0, ρ = ρ0, `u_w`.
+//!
+//! Walls push and never pull: the extrapolated `p_w` is clamped at zero, and in the
+//! momentum equation a fluid particle's pressure counts against a wall only when
+//! positive, `(p_w + max(p_i, 0))`. Otherwise a fluid particle in tension, typically a
+//! splash particle that left the bulk expanded (ρ < ρ0, alone, so nothing restores
+//! its density), is sucked into the wall it passes; a liquid cannot hold tension
+//! against a wall without cavitating. In flows whose pressure stays positive (all
+//! those with a background pressure) nothing changes. The energy budget's wall power
+//! takes the difference into account (`P_W` with `p_w + max(p_i, 0) - p_i`).
 
 use crate::domain::Domain;
 use crate::eos::LinearEos;
@@ -43,7 +52,11 @@ pub fn extrapolate_walls<const D: usize, K: Kernel>(
             }
             let uw = state.u[i];
             if sw > 0.0 {
-                (i, (sp + gravity.dot(&srx)) / sw, uw * 2.0 - su / sw)
+                (
+                    i,
+                    ((sp + gravity.dot(&srx)) / sw).max(0.0),
+                    uw * 2.0 - su / sw,
+                )
             } else {
                 (i, 0.0, uw)
             }

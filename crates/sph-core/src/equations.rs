@@ -200,6 +200,9 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             Some(interior) if pi < 0.0 && interior[i] => -pi,
             _ => pi,
         };
+        // Walls push and never pull (see `boundary`): with a wall, p_i counts only when
+        // positive.
+        let pi_wall = pi_pair.max(0.0);
         let zero = Vector::<D>::zeros();
         let grad_i = if DIFF && Df::NEEDS_GRADIENT {
             self.grad[i]
@@ -220,8 +223,8 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             let vj = p.mass[j] / p.rho[j];
             let grad_w = x_ij * (f * vj);
             s.divergence += (p.u[j] - ui).dot(&grad_w);
-            s.pressure += grad_w * (p.p[j] + pi_pair);
             let fluid_j = p.kind[j] == Kind::Fluid;
+            s.pressure += grad_w * (p.p[j] + if fluid_j { pi_pair } else { pi_wall });
             if V::ACTIVE {
                 let (uv_j, weight) = if fluid_j {
                     (p.u[j], 1.0)
@@ -292,7 +295,9 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             });
     }
 
-    /// `Σ_w p_w ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
+    /// `Σ_w (p_w + max(p_i, 0) - p_i) ∇_iW_iw V_w` over the wall neighbours of fluid
+    /// particle i: the part of the wall pressure force that the continuity equation
+    /// does not balance, whose power is the wall power `P_W`.
     fn wall_force(
         &self,
         i: usize,
@@ -300,13 +305,15 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     ) -> Vector<D> {
+        let tension = p.p[i].max(0.0) - p.p[i];
         list.of(i)
             .iter()
             .map(|&j| j as usize)
             .filter(|&j| p.kind[j] == Kind::Wall)
             .map(|j| {
                 let x_ij = domain.separation(&p.x[i], &p.x[j]);
-                x_ij * (self.kernel.dw_over_r(x_ij.norm()) * p.p[j] * p.mass[j] / p.rho[j])
+                let f = self.kernel.dw_over_r(x_ij.norm());
+                x_ij * (f * (p.p[j] + tension) * p.mass[j] / p.rho[j])
             })
             .sum()
     }

@@ -299,3 +299,14 @@ def test_free_surface_detection(tmp_path):
         order = np.argsort(f["id"][:])
         np.testing.assert_array_equal(f["free_surface"][:][order], fs["on_surface"])
     assert "free_surface" in (tmp_path / "s.xmf").read_text()
+
+
+def test_wall_crossings_through_the_impact(coarse_dam_break):
+    """The dam break at H/Δx = 20 through the impact on the right wall (t* ≈ 2.5) and
+    the run-up: no fluid particle inside a wall at any step."""
+    sim = ds.Simulation(coarse_dam_break)
+    worst = 0
+    while sim.time < 0.8:
+        sim.step(10)
+        worst = max(worst, sim.wall_crossings())
+    assert isinstance(worst, int) and worst == 0

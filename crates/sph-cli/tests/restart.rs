@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{cli, scratch, small_case};
+use common::{cli, cli_within, scratch, small_case};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -63,6 +63,21 @@ fn snapshots(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
+/// Asserts that the binary succeeded (showing its error otherwise).
+fn succeeded(out: std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The simulated time of a snapshot.
+fn snapshot_time(file: &Path) -> f64 {
+    let h5 = hdf5::File::open(file).unwrap();
+    h5.attr("time").unwrap().read_scalar().unwrap()
+}
+
 fn dataset(file: &hdf5::File, name: &str) -> Vec<f64> {
     file.dataset(name).unwrap().read_raw().unwrap()
 }
@@ -70,8 +85,7 @@ fn dataset(file: &hdf5::File, name: &str) -> Vec<f64> {
 /// Asserts that two snapshots hold the same state, bit for bit.
 fn assert_same_state(a: &Path, b: &Path) {
     let (fa, fb) = (hdf5::File::open(a).unwrap(), hdf5::File::open(b).unwrap());
-    let attr = |f: &hdf5::File, n: &str| -> f64 { f.attr(n).unwrap().read_scalar().unwrap() };
-    assert_eq!(attr(&fa, "time").to_bits(), attr(&fb, "time").to_bits());
+    assert_eq!(snapshot_time(a).to_bits(), snapshot_time(b).to_bits());
     for name in ["position", "velocity", "density", "pressure"] {
         let (va, vb) = (dataset(&fa, name), dataset(&fb, name));
         assert_eq!(va.len(), vb.len(), "{name}");
@@ -91,11 +105,7 @@ fn a_run_stopped_by_sigterm_continues_bit_for_bit() {
     let case = long_case(&dir, 1.0);
     let (whole, parts) = (dir.join("whole"), dir.join("parts"));
     let out = cli(&["run", &case, "--out", whole.to_str().unwrap(), "--quiet"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(out);
 
     let child = spawn(&["run", &case, "--out", parts.to_str().unwrap(), "--quiet"]);
     wait_for(&parts.join("particles_000003.h5"));
@@ -113,23 +123,17 @@ fn a_run_stopped_by_sigterm_continues_bit_for_bit() {
         "{err}"
     );
     let last = snapshots(&parts).pop().unwrap();
-    let stopped_at: f64 = hdf5::File::open(&last)
-        .unwrap()
-        .attr("time")
-        .unwrap()
-        .read_scalar()
-        .unwrap();
+    let stopped_at: f64 = snapshot_time(&last);
     assert!(
         stopped_at < 1.0,
         "the signal came after the end ({stopped_at} s)"
     );
 
-    let resumed = cli(&["run", "--restart", restart.to_str().unwrap(), "--quiet"]);
-    assert!(
-        resumed.status.success(),
-        "{}",
-        String::from_utf8_lossy(&resumed.stderr)
+    let resumed = cli_within(
+        &["run", "--restart", restart.to_str().unwrap(), "--quiet"],
+        Duration::from_secs(60),
     );
+    succeeded(resumed);
     assert_same_state(
         snapshots(&whole).last().unwrap(),
         snapshots(&parts).last().unwrap(),
@@ -148,11 +152,7 @@ fn a_finished_run_extends_with_until_and_never_overwrites_later_output() {
     let case = long_case(&dir, 0.1);
     let run = dir.join("run");
     let out = cli(&["run", &case, "--out", run.to_str().unwrap(), "--quiet"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(out);
     let restart = run.join("restart.h5");
     let kept = dir.join("restart_at_0.1.h5");
     std::fs::copy(&restart, &kept).unwrap();
@@ -182,19 +182,10 @@ fn a_finished_run_extends_with_until_and_never_overwrites_later_output() {
         "0.2",
         "--quiet",
     ]);
-    assert!(
-        more.status.success(),
-        "{}",
-        String::from_utf8_lossy(&more.stderr)
-    );
+    succeeded(more);
     let files = snapshots(&run);
     assert!(files.len() > n_before);
-    let t_end: f64 = hdf5::File::open(files.last().unwrap())
-        .unwrap()
-        .attr("time")
-        .unwrap()
-        .read_scalar()
-        .unwrap();
+    let t_end = snapshot_time(files.last().unwrap());
     assert!((t_end - 0.2).abs() < 1e-12, "{t_end}");
 
     // The copy from t = 0.1 would write over the snapshots after it: refused ...
@@ -221,11 +212,7 @@ fn a_finished_run_extends_with_until_and_never_overwrites_later_output() {
         "--until",
         "0.15",
     ]);
-    assert!(
-        forced.status.success(),
-        "{}",
-        String::from_utf8_lossy(&forced.stderr)
-    );
+    succeeded(forced);
     let series = std::fs::read_to_string(run.join("timeseries.csv")).unwrap();
     let times: Vec<f64> = series
         .lines()

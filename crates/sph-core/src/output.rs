@@ -317,23 +317,7 @@ fn write_h5<const D: usize>(
         .shape((n, 3))
         .create("velocity")?
         .write_raw(&padded(&p.u))?;
-    file.new_dataset::<f64>()
-        .shape(n)
-        .create("density")?
-        .write_raw(&p.rho)?;
-    file.new_dataset::<f64>()
-        .shape(n)
-        .create("pressure")?
-        .write_raw(&p.p)?;
-    let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
-    file.new_dataset::<u8>()
-        .shape(n)
-        .create("kind")?
-        .write_raw(&kind)?;
-    file.new_dataset::<u32>()
-        .shape(n)
-        .create("id")?
-        .write_raw(&p.id)?;
+    write_scalars(&file, p)?;
     if let Some(v) = extras.shift_velocity {
         file.new_dataset::<f64>()
             .shape((n, 3))
@@ -361,6 +345,30 @@ fn write_h5<const D: usize>(
         .create("dimension")?
         .write_scalar(&(D as u32))?;
     file.close()
+}
+
+/// Writes the per-particle `density`, `pressure`, `kind` (0 fluid, 1 wall) and `id`.
+pub(crate) fn write_scalars<const D: usize>(
+    file: &hdf5::File,
+    p: &Particles<D>,
+) -> hdf5::Result<()> {
+    let n = p.len();
+    for (name, v) in [("density", &p.rho), ("pressure", &p.p)] {
+        file.new_dataset::<f64>()
+            .shape(n)
+            .create(name)?
+            .write_raw(v)?;
+    }
+    let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
+    file.new_dataset::<u8>()
+        .shape(n)
+        .create("kind")?
+        .write_raw(&kind)?;
+    file.new_dataset::<u32>()
+        .shape(n)
+        .create("id")?
+        .write_raw(&p.id)?;
+    Ok(())
 }
 
 fn xdmf(entries: &[Entry]) -> String {

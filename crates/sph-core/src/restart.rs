@@ -84,21 +84,11 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
     if let Some(v) = &c.shift_velocity {
         vector("shifting_velocity", v)?;
     }
-    for (name, v) in [("density", &p.rho), ("pressure", &p.p), ("mass", &p.mass)] {
-        file.new_dataset::<f64>()
-            .shape(n)
-            .create(name)?
-            .write_raw(v)?;
-    }
-    let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
-    file.new_dataset::<u8>()
+    crate::output::write_scalars(&file, p)?;
+    file.new_dataset::<f64>()
         .shape(n)
-        .create("kind")?
-        .write_raw(&kind)?;
-    file.new_dataset::<u32>()
-        .shape(n)
-        .create("id")?
-        .write_raw(&p.id)?;
+        .create("mass")?
+        .write_raw(&p.mass)?;
     file.new_dataset::<u8>()
         .shape(c.case_toml.len())
         .create("case_toml")?

@@ -21,7 +21,7 @@ fn worst_crossings(overrides: &[&str]) -> usize {
 /// The violent impact of the dam break at H/Δx = 30 in the example's tank (3H high,
 /// which the run-up jet reaches at this resolution, so splash particles skim and land
 /// on the wall's top edge), RK4 at CFL 1.5 and the symplectic scheme at its CFL 0.15:
-/// zero crossings. Before walls stopped pulling fluid in tension (`boundary`), a lone
+/// zero crossings. Before walls stopped pulling lone particles (`boundary`), a lone
 /// expanded splash particle sank into the top of the right wall at H/Δx = 20.
 #[test]
 fn dam_break_impact_does_not_cross_the_walls() {

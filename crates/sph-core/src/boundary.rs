@@ -8,20 +8,24 @@
 //! (`a_w = 0`): they are at rest or slide in their own plane with a constant `u_w`
 //! (a lid); a wall particle with no fluid neighbour takes p = 0, ρ = ρ0, `u_w`.
 //!
-//! Walls push and never pull: the extrapolated `p_w` is clamped at zero, and in the
-//! momentum equation a fluid particle's pressure counts against a wall only when
-//! positive, `(p_w + max(p_i, 0))`. Otherwise a fluid particle in tension, typically a
-//! splash particle that left the bulk expanded (ρ < ρ0, alone, so nothing restores
-//! its density), is sucked into the wall it passes; a liquid cannot hold tension
-//! against a wall without cavitating. In flows whose pressure stays positive (all
-//! those with a background pressure) nothing changes. The energy budget's wall power
-//! takes the difference into account (`P_W` with `p_w + max(p_i, 0) - p_i`).
+//! The extrapolated `p_w` is clamped at zero: a wall does not pull on the fluid.
 //!
-//! Measured trade-off: releasing the tension only for lone particles (no other fluid
-//! within reach) still let fluid into the walls of the coarse 3D dam break and of the
-//! symplectic 2D one; releasing it for all fluid holds every wall, but the thin run-up
-//! sheet of a very coarse dam break (H/Δx = 12) with α = 0 then tears and trips the
-//! density guard (docs/stability).
+//! Walls push lone particles and never pull or stretch them. A lone particle (no other
+//! fluid within the kernel support) feels `max(p_w + p_i, 0)` from each wall particle
+//! instead of `(p_w + p_i)`, and the walls may compress it (dρ/dt > 0 as it approaches
+//! them, which builds the pressure that stops it) but not expand it below ρ0. Such a
+//! particle, a splash that left the bulk expanded (ρ < ρ0), keeps its density, since no
+//! fluid around it can restore it; its tension, extrapolated to the walls as well,
+//! pulled it into the top edge of a wall it skimmed (dam break, H/Δx = 20).
+//!
+//! Fluid in contact with the bulk keeps `(p_w + p_i)` with its own `p_i`: the run-up
+//! sheet of a dam break is in slight tension along the wall. Dropping a negative `p_i`
+//! against walls for all fluid was tried and measured: the sheet then tears, and the
+//! dam break of `examples/dam_break_2d.toml` (H/Δx = 50, α = 0.02) trips the density
+//! guard at t·sqrt(g/H) ≈ 5.5. Releasing only lone particles without clamping `p_w`
+//! still let fluid into the walls of the coarse 3D and symplectic 2D dam breaks. The
+//! energy budget's wall power accounts for the lone-particle force; the lone
+//! particle's withheld expansion is not in the budget.
 
 use crate::domain::Domain;
 use crate::eos::LinearEos;

@@ -165,6 +165,8 @@ struct Sums<const D: usize> {
     viscous: Vector<D>,
     /// Σ ψ_ij·∇W V_j over fluid neighbours
     diffusion: f64,
+    /// Whether any fluid particle lies within the kernel support
+    fluid_in_reach: bool,
 }
 
 impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D, K, Df, V> {
@@ -200,9 +202,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             Some(interior) if pi < 0.0 && interior[i] => -pi,
             _ => pi,
         };
-        // Walls push and never pull (see `boundary`): with a wall, p_i counts only when
-        // positive.
-        let pi_wall = pi_pair.max(0.0);
+
         let zero = Vector::<D>::zeros();
         let grad_i = if DIFF && Df::NEEDS_GRADIENT {
             self.grad[i]
@@ -214,6 +214,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             pressure: zero,
             viscous: zero,
             diffusion: 0.0,
+            fluid_in_reach: false,
         };
         for &j in list.of(i) {
             let j = j as usize;
@@ -224,7 +225,8 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             let grad_w = x_ij * (f * vj);
             s.divergence += (p.u[j] - ui).dot(&grad_w);
             let fluid_j = p.kind[j] == Kind::Fluid;
-            s.pressure += grad_w * (p.p[j] + if fluid_j { pi_pair } else { pi_wall });
+            s.pressure += grad_w * (p.p[j] + pi_pair);
+            s.fluid_in_reach |= fluid_j && f != 0.0;
             if V::ACTIVE {
                 let (uv_j, weight) = if fluid_j {
                     (p.u[j], 1.0)
@@ -252,6 +254,14 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
                     f,
                 );
                 s.diffusion += psi * vj * (fluid_j as u8 as f64);
+            }
+        }
+        if !s.fluid_in_reach {
+            // a lone particle: only walls are within reach, and they push it, never
+            // pull it, nor stretch it below ρ0 (see `boundary`)
+            s.pressure = self.wall_sum(i, p, list, domain, |p_w| (p_w + pi).max(0.0));
+            if rho_i <= self.physics.eos.rho0 {
+                s.divergence = s.divergence.min(0.0);
             }
         }
         s
@@ -295,17 +305,15 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             });
     }
 
-    /// `Σ_w (p_w + max(p_i, 0) - p_i) ∇_iW_iw V_w` over the wall neighbours of fluid
-    /// particle i: the part of the wall pressure force that the continuity equation
-    /// does not balance, whose power is the wall power `P_W`.
-    fn wall_force(
+    /// `Σ_w P(p_w) ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
+    fn wall_sum(
         &self,
         i: usize,
         p: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
+        pair_pressure: impl Fn(f64) -> f64,
     ) -> Vector<D> {
-        let tension = p.p[i].max(0.0) - p.p[i];
         list.of(i)
             .iter()
             .map(|&j| j as usize)
@@ -313,9 +321,32 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             .map(|j| {
                 let x_ij = domain.separation(&p.x[i], &p.x[j]);
                 let f = self.kernel.dw_over_r(x_ij.norm());
-                x_ij * (f * (p.p[j] + tension) * p.mass[j] / p.rho[j])
+                x_ij * (f * pair_pressure(p.p[j]) * p.mass[j] / p.rho[j])
             })
             .sum()
+    }
+
+    /// The part of the wall pressure force on fluid particle i that the continuity
+    /// equation does not balance, whose power is the wall power `P_W`: `Σ_w p_w ∇_iW_iw
+    /// V_w`, or for a lone particle `Σ_w (max(p_w + p_i, 0) - p_i) ∇_iW_iw V_w`.
+    fn wall_force(
+        &self,
+        i: usize,
+        p: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) -> Vector<D> {
+        let radius = self.kernel.radius();
+        let lone = !list.of(i).iter().any(|&j| {
+            let j = j as usize;
+            p.kind[j] == Kind::Fluid && domain.separation(&p.x[i], &p.x[j]).norm() < radius
+        });
+        let pi = p.p[i];
+        if lone {
+            self.wall_sum(i, p, list, domain, |p_w| (p_w + pi).max(0.0) - pi)
+        } else {
+            self.wall_sum(i, p, list, domain, |p_w| p_w)
+        }
     }
 
     fn update_pressure(&self, particles: &mut Particles<D>) {

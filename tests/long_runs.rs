@@ -57,8 +57,8 @@ fn hydrostatic_tank_holds_to_t_star_200() {
          worst L2 p error {worst_error:.4}",
         worst_speed / scale
     );
-    // Measured: drift -0.068 Δx, max |u| 8.6e-3 sqrt(gH) (the residual acoustic
-    // sloshing of so coarse a column), worst L2 pressure error 1.42% of ρ0gH.
+    // Measured: drift -0.071 Δx, max |u| 7.5e-3 sqrt(gH) (the residual acoustic
+    // sloshing of so coarse a column), worst L2 pressure error 1.46% of ρ0gH.
     assert!(drift.abs() < 0.2, "drift {drift}");
     assert!(worst_speed / scale < 0.015, "speed {worst_speed}");
     assert!(worst_error < 0.03, "error {worst_error}");
@@ -70,11 +70,13 @@ fn hydrostatic_tank_holds_to_t_star_200() {
 /// - the energy balance of SCHEME.md §10 closes: E_k + E_p + E_c plus the energy taken
 ///   out by the diffusive and wall powers, −∫(P_D + P_W)dt, stays at its initial value.
 ///   The residual is the time-integration error of the trapezoidal power integral
-///   against RK4's state; measured 0.38% of ΔE_p,∞ (the potential energy the column
-///   releases) at worst over the run, so 2% is asserted;
+///   against RK4's state (0.38% of ΔE_p,∞, the potential energy the column releases)
+///   plus the expansion that walls withhold from lone splash particles (`boundary`),
+///   which the budget does not count: measured 1.25% at worst over the run, so 2% is
+///   asserted;
 /// - E_k + E_p + E_c never grows above its initial value by more than that residual
 ///   (the diffusive term of δ-SPH dissipates; Antuono et al. 2015, CMAME 289:209);
-/// - the sloshing has settled: 91% of ΔE_p,∞ is gone (more than half is asserted).
+/// - the sloshing has settled: 90% of ΔE_p,∞ is gone (more than half is asserted).
 #[test]
 fn dam_break_without_viscosity_to_t_star_20_closes_its_energy_balance() {
     let (rho0, g, depth): (f64, f64, f64) = (1000.0, 9.81, 0.6);

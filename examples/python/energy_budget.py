@@ -9,7 +9,9 @@ potential energy the column releases when it comes to rest. A run that blows up 
 
     python examples/python/energy_budget.py                 # Δx = 0.02 (H/Δx = 30)
     python examples/python/energy_budget.py --spacing 0.012
-    python examples/python/energy_budget.py --spacing 0.012 --until 20 --alpha 0   # long run
+    python examples/python/energy_budget.py --spacing 0.012 --until 20 --alpha 0 --guard 0.3
+        # the long run without viscosity: the re-entrant jet's impact near t·sqrt(g/H) = 8
+        # compresses a particle by 21% for an instant, past the default guard of 0.2
 """
 
 import argparse
@@ -39,16 +41,20 @@ def arguments():
     parser.add_argument("--until", type=float, default=7.0, help="end time in t·sqrt(g/H)")
     parser.add_argument("--alpha", type=float, help="artificial viscosity α (0: none); "
                         "default: the case's")
+    parser.add_argument("--guard", type=float, help="stability.max_density_variation "
+                        "(default: the case's, 0.2)")
     parser.add_argument("--out", type=pathlib.Path, help="new folder for the PNG")
     return parser.parse_args()
 
 
-def history(diffusion, spacing, until, alpha):
+def history(diffusion, spacing, until, alpha, guard):
     with open(CASE, "rb") as f:
         config = tomllib.load(f)
     config["particles"]["spacing"] = spacing
     config["scheme"]["diffusion"] = diffusion
     config["diagnostics"]["energy_budget"] = True
+    if guard is not None:
+        config["stability"] = {"max_density_variation": guard}
     if alpha == 0.0:
         config["scheme"]["viscosity"] = "none"
     elif alpha is not None:
@@ -75,7 +81,7 @@ def main():
     out.mkdir(parents=True, exist_ok=False)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True, constrained_layout=True)
     for ax, (label, diffusion) in zip(axes, VARIANTS.items()):
-        rows, note = history(diffusion, args.spacing, args.until, args.alpha)
+        rows, note = history(diffusion, args.spacing, args.until, args.alpha, args.guard)
         change = rows[:, 1:] - rows[0, 1:]
         names = ["E_k", "ΔE_p", "ΔE_c", "ΔE (sum)", "ΔE + dissipated"]
         for col, name in enumerate(names):

@@ -62,7 +62,7 @@ The integrators:
 Reference: Martin & Moyce (1952), both columns, and Koshizuka & Oka (1996), grade C. The
 SPH front leads the experiments by a time shift τ = 0.08–0.25 (in T = t sqrt(2g/a)) that
 grows with resolution. This is the usual reading: the experiments' gate takes time to
-open. After the fitted shift every variant lies within 6–7% RMS of the data, which is
+open. After the fitted shift every variant lies within 6–7% RMS of the data (5.7–6.7%), which is
 the scatter between the two experiments. The error is flat in Δx, and the variants
 differ by less than that scatter.
 """,
@@ -127,8 +127,9 @@ K = 2(n+2)μ with n = 3 is right (2(2+2)μ would leave ν 20% short and the prof
     "cavity": """
 Reference: Ghia, Ghia & Shin (1982), Re = 100 (grade B), with the sliding lid of
 `[[tank]] lid_velocity`. The background pressure p_b = 5 ρ0U² keeps the vortex core in
-compression. The centre-line velocities converge at order ~1.6: 8.7% RMS at L/Δx = 20
-and 4.7% at 30 by t U/L = 20. The variants agree within 4% of each other: in this
+compression; c0 = 20 U (with 10 U one particle was pressed into the wall at the
+lid's downstream corner). The centre-line velocities converge at order ~1.4: 8.8% RMS
+at L/Δx = 20 and 4.9% at 30 by t U/L = 20. The variants agree within 4% of each other: in this
 confined, smooth flow the density diffusion hardly matters.
 """,
 }

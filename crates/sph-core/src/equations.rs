@@ -328,19 +328,16 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
 
     /// The part of the wall pressure force on fluid particle i that the continuity
     /// equation does not balance, whose power is the wall power `P_W`: `Σ_w p_w ∇_iW_iw
-    /// V_w`, or for a lone particle `Σ_w (max(p_w + p_i, 0) - p_i) ∇_iW_iw V_w`.
+    /// V_w`, or for a lone particle (as found by [`Self::sums`]) `Σ_w (max(p_w + p_i, 0)
+    /// - p_i) ∇_iW_iw V_w`.
     fn wall_force(
         &self,
         i: usize,
         p: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
+        lone: bool,
     ) -> Vector<D> {
-        let radius = self.kernel.radius();
-        let lone = !list.of(i).iter().any(|&j| {
-            let j = j as usize;
-            p.kind[j] == Kind::Fluid && domain.separation(&p.x[i], &p.x[j]).norm() < radius
-        });
         let pi = p.p[i];
         if lone {
             self.wall_sum(i, p, list, domain, |p_w| (p_w + pi).max(0.0) - pi)
@@ -448,7 +445,13 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
                     viscous: m * particles.u[i].dot(&s.viscous) * k / rho,
                     diffusive: m * p / (rho * rho) * scale * s.diffusion,
                     wall: -m / rho
-                        * particles.u[i].dot(&self.wall_force(i, particles, list, domain)),
+                        * particles.u[i].dot(&self.wall_force(
+                            i,
+                            particles,
+                            list,
+                            domain,
+                            !s.fluid_in_reach,
+                        )),
                 }
             })
             .reduce(Powers::default, |a, b| Powers {

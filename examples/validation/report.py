@@ -1,6 +1,7 @@
 """Plots, tables and the README of the validation report (written by run_all.py)."""
 
 import math
+import pathlib
 
 import matplotlib
 
@@ -12,6 +13,8 @@ from cases import buchner  # noqa: E402
 from reading import INTRO, READING  # noqa: E402
 
 BUDGET_S = 60.0
+#: the converged fine P1 signal of our own (the finest δ-SPH RK4 dam break run so far)
+FINE_P1 = pathlib.Path(__file__).resolve().parent / "reference" / "dam_break_p1_fine.csv"
 
 
 def variant(row):
@@ -70,21 +73,41 @@ def smooth(t, p, width=0.1):
     return np.convolve(p, np.ones(k) / k, mode="same")
 
 
+def fine_p1(signals):
+    """The reference for `vs_fine`: the finest δ-SPH RK4 P1 signal, of this suite run or
+    stored by an earlier one, whichever is finer. A finer run replaces the stored file."""
+    runs = [k for k in signals if k[1:3] == ("δ-SPH", "RK4")]
+    finest = max(runs, key=lambda k: k[3], default=None)
+    stored = None
+    if FINE_P1.exists():
+        header = FINE_P1.read_text().splitlines()[0]
+        data = np.loadtxt(FINE_P1, delimiter=",", comments="#")
+        stored = (float(header.split("H/Δx = ")[1].split(",")[0]), data[:, 0], data[:, 1])
+    if finest is not None and (stored is None or finest[3] > stored[0]):
+        t, p = signals[finest]
+        FINE_P1.parent.mkdir(exist_ok=True)
+        np.savetxt(FINE_P1, np.column_stack([t, p]), delimiter=",", fmt="%.5f",
+                   header=f"δ-SPH RK4 at H/Δx = {finest[3]:g}, P1 (x = 3.2196 m, y = 0.16 m), "
+                          "written by examples/validation/run_all.py\nt_star,p_over_rho0_g_H")
+        return finest[3], t, p
+    return stored
+
+
 def dam_break_against_fine(rows, signals):
-    """RMS difference of smoothed P1 over t* in [2.3, 7] against the finest δ-SPH RK4 run."""
-    fine_key = max((k for k in signals if k[1] == "δ-SPH" and k[2] == "RK4"),
-                   key=lambda k: k[3], default=None)
-    if fine_key is None:
+    """RMS difference of smoothed P1 over t* in [2.3, 7] against the fine reference."""
+    fine = fine_p1(signals)
+    if fine is None:
         return None
-    t, ref = signals[fine_key]
-    ref = smooth(t, ref)
-    window = (t >= 2.3) & (t <= 7.0)
+    n_fine, t_ref, ref = fine
+    ref = smooth(t_ref, ref)
+    window = (t_ref >= 2.3) & (t_ref <= 7.0)
     for r in rows:
         key = (r["case"], r["diffusion"], r["integrator"], r["resolution"])
-        if key in signals and key != fine_key:
-            diff = smooth(t, signals[key][1]) - ref
+        if key in signals and not (key[1:3] == ("δ-SPH", "RK4") and key[3] == n_fine):
+            t, p = signals[key]
+            diff = np.interp(t_ref, t, smooth(t, p)) - ref
             r["details"] += f"; vs_fine={np.sqrt(np.mean(diff[window] ** 2)):.4g}"
-    return fine_key
+    return n_fine
 
 
 def plot_p1(out, signals):
@@ -130,12 +153,17 @@ def table(rows):
     return "\n".join(lines)
 
 
-def summary(rows):
+def best_at_finest(rows):
+    """The finest resolution run and the run with the lowest error there (or None)."""
     finest = max(r["resolution"] for r in rows)
     at_finest = usable([r for r in rows if r["resolution"] == finest])
+    return finest, min(at_finest, key=lambda r: r["error"], default=None)
+
+
+def summary(rows):
+    finest, best = best_at_finest(rows)
     parts = []
-    if at_finest:
-        best = min(at_finest, key=lambda r: r["error"])
+    if best:
         parts.append(f"best error at the finest resolution ({finest:g}): "
                      f"**{best['error']:.3e}** ({variant(best)})")
     orders = [f"{label} {order(runs):.2f}" for label, runs in by_variant(rows).items()
@@ -152,8 +180,46 @@ def summary(rows):
     return "\n".join(f"- {p}" for p in parts)
 
 
-def write(out, mode, cases, rows, signals, total):
-    text = [INTRO.format(mode=mode, total=total, runs=len(rows))]
+def closing_table(cases, rows):
+    """One line per case: best error at the finest resolution, that variant's observed
+    order, and the variant with the lowest error within the budget."""
+    lines = ["| case | finest resolution | best error there | variant | its order in Δx "
+             f"| lowest error within {BUDGET_S:.0f} s |", "|---|---|---|---|---|---|"]
+    for case in cases:
+        case_rows = [r for r in rows if r["case"] == case.name]
+        if not case_rows:
+            continue
+        finest, best = best_at_finest(case_rows)
+        winner = budget_winner(case_rows)
+        cells = [f"[{case.title}](#{anchor(case.title)})", f"{finest:g}"]
+        if best:
+            p = order(by_variant(case_rows)[variant(best)])
+            cells += [f"{best['error']:.3g}", variant(best), f"{p:.2f}"]
+        else:
+            cells += ["—", "—", "—"]
+        cells.append(f"{variant(winner)} at {winner['resolution']:g}: {winner['error']:.3g} "
+                     f"in {winner['wall_s']:.0f} s" if winner else "—")
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def anchor(title):
+    """GitHub's heading anchor: lower case, punctuation dropped, spaces to hyphens."""
+    kept = "".join(c for c in title.lower() if c.isalnum() or c in " -")
+    return kept.replace(" ", "-")
+
+
+def skipped_note(skipped):
+    if not skipped:
+        return ""
+    items = ", ".join(f"{d} {i} at {n:g} ({t:.0f} s predicted)" for _, d, i, n, t, _ in skipped)
+    return (f"Not run, over the per-run cap of {skipped[0][5]:g} s (predicted from the same "
+            f"variant at the previous resolution): {items}.\n")
+
+
+def write(out, mode, cases, rows, signals, skipped, total):
+    text = [INTRO.format(mode=mode, total_min=total / 60, runs=len(rows)),
+            "## Summary\n", closing_table(cases, rows) + "\n"]
     for case in cases:
         case_rows = [r for r in rows if r["case"] == case.name]
         if case.name == "dam_break":
@@ -167,8 +233,9 @@ def write(out, mode, cases, rows, signals, total):
             text.append("![P1 signals](dam_break_p1.png)\n")
             if fine:
                 text.append(f"`vs_fine`: RMS difference of the 0.1 t*-averaged P1 signal over "
-                            f"t* ∈ [2.3, 7] from the {fine[1]} {fine[2]} run at H/Δx = "
-                            f"{fine[3]:g}, in ρ0gH.\n")
+                            f"t* ∈ [2.3, 7] from the δ-SPH RK4 run at H/Δx = {fine:g} "
+                            f"(`{FINE_P1.name}`), in ρ0gH.\n")
         text.append(summary(case_rows) + "\n")
+        text.append(skipped_note([s for s in skipped if s[0] == case.name]))
         text.append(table(case_rows) + "\n")
     (out / "README.md").write_text("\n".join(text))

@@ -6,8 +6,9 @@ stable. Writes `results.csv`, one PNG per case (error against wall time; error a
 Δx with the fitted order) and `README.md` into the output folder.
 
     python3 examples/validation/run_all.py --quick    # < 10 min on 2 cores
-    python3 examples/validation/run_all.py --full     # the record (hours)
+    python3 examples/validation/run_all.py --full     # the record (about an hour)
     python3 examples/validation/run_all.py --quick --cases hydrostatic elliptic_drop
+    python3 examples/validation/run_all.py --full --resume   # run only what is missing
 """
 
 import argparse
@@ -15,9 +16,11 @@ import csv
 import math
 import pathlib
 import sys
+import json
 import time
 
 import deltasph as ds
+import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from cases import CASES  # noqa: E402
@@ -35,9 +38,37 @@ def arguments():
     mode.add_argument("--full", action="store_const", dest="mode", const="full")
     parser.add_argument("--cases", nargs="+", choices=[c.name for c in CASES])
     parser.add_argument("--out", type=pathlib.Path, default=ROOT / "docs" / "validation")
+    parser.add_argument("--resume", action="store_true",
+                        help="keep the runs already in the folder's results.csv (and their "
+                             "signals) and run only the missing ones")
+    parser.add_argument("--max-run-s", type=float,
+                        help="skip a run whose wall time, predicted from the same variant at "
+                             "the previous resolution, exceeds this many seconds (default: "
+                             f"none with --quick, {FULL_CAP_S:g} s with --full; a case may "
+                             "set its own)")
     args = parser.parse_args()
     args.mode = args.mode or "quick"
     return args
+
+
+#: P1 signals of the dam-break runs, kept beside results.csv for --resume
+SIGNALS = "signals.json"
+#: per-run wall-time cap of --full [s]: keeps the record run near an hour on 2 cores
+FULL_CAP_S = 90.0
+
+
+def cap_for(case, args):
+    if args.max_run_s is not None:
+        return args.max_run_s
+    if args.mode == "full":
+        return case.cap or FULL_CAP_S
+    return math.inf
+
+
+def predicted_wall(case, previous, n):
+    """Wall time of the run at resolution n from the previous run of the same variant:
+    particles grow as n^dim and steps as n (fixed Courant number, h ∝ Δx)."""
+    return previous["wall_s"] * (n / previous["resolution"]) ** (case.dim + 1)
 
 
 def run_one(case, n, diffusion, integrator):
@@ -61,30 +92,89 @@ def run_one(case, n, diffusion, integrator):
     return row, metrics
 
 
+def parse_row(raw):
+    """A row of an earlier results.csv, with the types run_one gives."""
+    row = dict(raw)
+    for key in ("resolution", "spacing", "wall_s", "error"):
+        row[key] = float(row[key])
+    for key in ("particles", "steps", "particle_steps_per_s"):
+        row[key] = int(row[key])
+    row["stable"] = row["stable"] == "True"
+    return row
+
+
+def key_of(row):
+    return (row["case"], row["diffusion"], row["integrator"], row["resolution"])
+
+
+def earlier_results(out):
+    """Rows and signals kept from an earlier run into the same folder (for --resume)."""
+    rows, signals = {}, {}
+    if (out / "results.csv").exists():
+        with open(out / "results.csv", newline="") as f:
+            rows = {key_of(r): r for r in map(parse_row, csv.DictReader(f))}
+    if (out / SIGNALS).exists():
+        stored = json.loads((out / SIGNALS).read_text())
+        signals = {tuple(k.split("|")[:3]) + (float(k.split("|")[3]),): tuple(map(np.array, v))
+                   for k, v in stored.items()}
+    return rows, signals
+
+
+def save_signals(out, signals):
+    stored = {"|".join(map(str, k)): [t.tolist(), p.tolist()] for k, (t, p) in signals.items()}
+    (out / SIGNALS).write_text(json.dumps(stored))
+
+
+def write_csv(out, rows):
+    with open(out / "results.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 def main():
     args = arguments()
     args.out.mkdir(parents=True, exist_ok=True)
     chosen = [c for c in CASES if not args.cases or c.name in args.cases]
-    rows, signals = [], {}
-    begin = time.perf_counter()
+    done, signals = earlier_results(args.out) if args.resume else ({}, {})
+    rows, skipped = [], []
+    csv_file = open(args.out / "results.csv", "w", newline="")
+    writer = csv.DictWriter(csv_file, fieldnames=COLUMNS)
+    writer.writeheader()
     for case in chosen:
+        cap = cap_for(case, args)
         for diffusion, integrator in case.variants[args.mode]:
+            previous = None
             for n in case.resolutions[args.mode]:
-                row, metrics = run_one(case, n, diffusion, integrator)
+                if previous is not None and predicted_wall(case, previous, n) > cap:
+                    skipped.append((case.name, diffusion, integrator, n,
+                                    predicted_wall(case, previous, n), cap))
+                    print(f"{case.name:20s} {diffusion:8s} {integrator:4s} {n:>6} skipped: "
+                          f"predicted {predicted_wall(case, previous, n):.0f} s > {cap:g} s",
+                          flush=True)
+                    break
+                key = (case.name, diffusion, integrator, float(n))
+                if key in done and (case.name != "dam_break" or key in signals):
+                    row = done[key]
+                else:
+                    row, metrics = run_one(case, n, diffusion, integrator)
+                    if "signal" in metrics:
+                        signals[key] = metrics["signal"]
+                        save_signals(args.out, signals)
                 rows.append(row)
-                if "signal" in metrics:
-                    signals[(case.name, diffusion, integrator, n)] = metrics["signal"]
+                writer.writerow(row)
+                csv_file.flush()
+                if row["stable"]:
+                    previous = row
                 print(f"{case.name:20s} {diffusion:8s} {integrator:4s} {n:>6} "
                       f"{row['particles']:>7} particles {row['wall_s']:8.2f} s "
                       f"error {row['error']:.4g} {'' if row['stable'] else '(blew up)'}",
                       flush=True)
-    total = time.perf_counter() - begin
-    with open(args.out / "results.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
-    report.write(args.out, args.mode, chosen, rows, signals, total)
-    print(f"{len(rows)} runs in {total:.0f} s; report in {args.out / 'README.md'}")
+    csv_file.close()
+    stepping = sum(r["wall_s"] for r in rows)
+    report.write(args.out, args.mode, chosen, rows, signals, skipped, stepping)
+    write_csv(args.out, rows)  # again, with what the report added (vs_fine)
+    print(f"{len(rows)} runs, {stepping:.0f} s of stepping; report in {args.out / 'README.md'}")
 
 
 if __name__ == "__main__":

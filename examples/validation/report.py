@@ -106,7 +106,8 @@ def dam_break_against_fine(rows, signals):
         if key in signals and not (key[1:3] == ("δ-SPH", "RK4") and key[3] == n_fine):
             t, p = signals[key]
             diff = np.interp(t_ref, t, smooth(t, p)) - ref
-            r["details"] += f"; vs_fine={np.sqrt(np.mean(diff[window] ** 2)):.4g}"
+            kept = [d for d in r["details"].split("; ") if not d.startswith("vs_fine=")]
+            r["details"] = "; ".join(kept + [f"vs_fine={np.sqrt(np.mean(diff[window] ** 2)):.4g}"])
     return n_fine
 
 

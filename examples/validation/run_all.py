@@ -146,15 +146,14 @@ def main():
         for diffusion, integrator in case.variants[args.mode]:
             previous = None
             for n in case.resolutions[args.mode]:
-                if previous is not None and predicted_wall(case, previous, n) > cap:
-                    skipped.append((case.name, diffusion, integrator, n,
-                                    predicted_wall(case, previous, n), cap))
+                predicted = predicted_wall(case, previous, n) if previous else 0.0
+                if predicted > cap:
+                    skipped.append((case.name, diffusion, integrator, n, predicted, cap))
                     print(f"{case.name:20s} {diffusion:8s} {integrator:4s} {n:>6} skipped: "
-                          f"predicted {predicted_wall(case, previous, n):.0f} s > {cap:g} s",
-                          flush=True)
+                          f"predicted {predicted:.0f} s > {cap:g} s", flush=True)
                     break
                 key = (case.name, diffusion, integrator, float(n))
-                if key in done and (case.name != "dam_break" or key in signals):
+                if key in done and (not case.records_signal or key in signals):
                     row = done[key]
                 else:
                     row, metrics = run_one(case, n, diffusion, integrator)

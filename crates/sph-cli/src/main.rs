@@ -3,17 +3,17 @@
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use signal_hook::consts::{SIGINT, SIGTERM};
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1};
 use signal_hook::flag;
 use sph_core::output::Output;
-use sph_core::restart::{self, Schedule};
-use sph_core::simulation::Counters;
+use sph_core::restart;
+use sph_core::run::{Control, Ending, Run};
 use sph_core::{Case, Simulation, SphError};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 #[derive(Parser)]
 #[command(
@@ -29,7 +29,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Run a case (or continue one from a restart file) and write HDF5/XDMF snapshots,
-    /// CSV time series and a restart file.
+    /// CSV time series and restart files.
     Run {
         /// The case file (not with --restart).
         #[arg(required_unless_present = "restart", conflicts_with = "restart")]
@@ -38,17 +38,23 @@ enum Command {
         /// --restart, the restart file's folder).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Replace an existing non-empty output folder (with --restart: snapshots
-        /// written after the restart point).
+        /// Replace the files of an earlier run in the output folder (files deltasph did
+        /// not write are kept; a folder that is not a run folder is refused). With
+        /// --restart: replace snapshots written after the restart point.
         #[arg(long)]
         force: bool,
         /// Continue the run saved in this restart file, bit for bit. Runs write
-        /// `restart.h5` when they end and when SIGINT or SIGTERM stops them.
+        /// `restart.h5` (the one before kept as `restart.prev.h5`) on the case's
+        /// `output.restart_interval`, every --checkpoint-every, at the end, on a stop
+        /// signal and when an output write fails.
         #[arg(long, value_name = "FILE")]
         restart: Option<PathBuf>,
         /// End time [s], replacing the case's `time.end`.
         #[arg(long, value_name = "SECONDS")]
         until: Option<f64>,
+        /// Also write a restart file after this much wall time, e.g. `30min`, `2h`, `90s`.
+        #[arg(long, value_name = "DURATION", value_parser = parse_duration)]
+        checkpoint_every: Option<Duration>,
         /// No progress bar.
         #[arg(long, short)]
         quiet: bool,
@@ -60,33 +66,46 @@ enum Command {
     },
 }
 
-/// How a run ended other than by reaching its end time.
-#[derive(Debug)]
-struct Interrupted {
-    signal: &'static str,
-    code: u8,
-    time: f64,
-    step: u64,
-    restart: PathBuf,
+fn parse_duration(text: &str) -> std::result::Result<Duration, String> {
+    let d = humantime::parse_duration(text)
+        .map_err(|e| format!("{e}: expected a duration such as 30min, 2h or 90s"))?;
+    if d.is_zero() {
+        return Err("expected a duration above zero".into());
+    }
+    Ok(d)
 }
 
-impl std::fmt::Display for Interrupted {
-    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        write!(
-            f,
-            "interrupted by {} at t = {:.6} s (step {}); continue with: sph-cli run --restart {}",
-            self.signal,
-            self.time,
-            self.step,
-            self.restart.display()
-        )
+/// The signals that end a run with a restart file: Ctrl-C, a kill, a closed terminal,
+/// and the pre-emption warning of batch schedulers.
+const STOP_SIGNALS: [i32; 4] = [SIGINT, SIGTERM, SIGHUP, SIGUSR1];
+
+fn signal_name(sig: usize) -> &'static str {
+    match sig as i32 {
+        SIGINT => "SIGINT",
+        SIGTERM => "SIGTERM",
+        SIGHUP => "SIGHUP",
+        SIGUSR1 => "SIGUSR1",
+        _ => "a signal",
     }
 }
 
-impl std::error::Error for Interrupted {}
+/// An ending that is not a success: the message and the exit code.
+#[derive(Debug)]
+struct Failure {
+    message: String,
+    code: u8,
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Failure {}
 
 /// Exit codes: 0 success, 2 bad input or output problem, 3 the run went unstable,
-/// 130 and 143 stopped by SIGINT and SIGTERM (a restart file was written).
+/// 128 + n when signal n stopped it (a restart file was written).
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -96,12 +115,14 @@ fn main() -> ExitCode {
             force,
             restart,
             until,
+            checkpoint_every,
             quiet,
         } => {
             let options = RunOptions {
                 out,
                 force,
                 until,
+                checkpoint_every,
                 quiet,
             };
             match (case, restart) {
@@ -116,14 +137,10 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
-            if let Some(stop) = e.downcast_ref::<Interrupted>() {
-                return ExitCode::from(stop.code);
+            if let Some(failure) = e.downcast_ref::<Failure>() {
+                return ExitCode::from(failure.code);
             }
-            let unstable = matches!(
-                e.downcast_ref::<SphError>(),
-                Some(SphError::Unstable { .. })
-            );
-            ExitCode::from(if unstable { 3 } else { 2 })
+            ExitCode::from(2)
         }
     }
 }
@@ -153,6 +170,7 @@ struct RunOptions {
     out: Option<PathBuf>,
     force: bool,
     until: Option<f64>,
+    checkpoint_every: Option<Duration>,
     quiet: bool,
 }
 
@@ -165,32 +183,23 @@ fn run(path: &Path, options: RunOptions) -> Result<()> {
         case.time.end = end;
     }
     let out = (options.out.clone()).unwrap_or_else(|| PathBuf::from(format!("{}_out", case.name)));
-    let output = Output::create(&out, options.force)?;
-    output.write_text("case.toml", &std::fs::read_to_string(path)?)?;
+    // build first: a case that does not build leaves no folder behind
+    let text = std::fs::read_to_string(path)?;
     match case.dimension {
-        2 => start(Simulation::<2>::new(case)?, output, &options),
-        _ => start(Simulation::<3>::new(case)?, output, &options),
+        2 => start(Simulation::<2>::new(case)?, &out, &text, &options),
+        _ => start(Simulation::<3>::new(case)?, &out, &text, &options),
     }
 }
 
-/// A fresh run: the series header, the first row and the first snapshot.
 fn start<const D: usize>(
-    mut sim: Simulation<D>,
-    mut output: Output,
+    sim: Simulation<D>,
+    out: &Path,
+    case_text: &str,
     options: &RunOptions,
 ) -> Result<()> {
-    output.start_series(&sim.series_header())?;
-    let row = sim.series_values();
-    output.series_row(&row)?;
-    write_state(&sim, &mut output)?;
-    let every = intervals(&sim);
-    let schedule = Schedule {
-        next_snapshot: every.0,
-        next_series: every.1,
-        snapshots: 1,
-        initial_energy: sim.energies().total(),
-    };
-    drive(sim, output, schedule, options.quiet)
+    let mut output = Output::create(out, options.force)?;
+    output.write_text("case.toml", case_text)?;
+    drive(Run::start(sim, output)?, options)
 }
 
 fn resume(file: &Path, options: RunOptions) -> Result<()> {
@@ -203,8 +212,7 @@ fn resume(file: &Path, options: RunOptions) -> Result<()> {
     };
     match restart::dimension(file)? {
         2 => resume_in::<2>(file, &dir, options),
-        3 => resume_in::<3>(file, &dir, options),
-        d => Err(SphError::output(file, format!("dimension {d} is not 2 or 3")).into()),
+        _ => resume_in::<3>(file, &dir, options),
     }
 }
 
@@ -213,23 +221,7 @@ fn resume_in<const D: usize>(file: &Path, dir: &Path, options: RunOptions) -> Re
     let sim = Simulation::<D>::from_checkpoint(checkpoint, options.until)?;
     let mut output = Output::resume(dir, schedule.snapshots, options.force)?;
     output.resume_series(&sim.series_header(), sim.time)?;
-    drive(sim, output, schedule, options.quiet)
-}
-
-/// Intervals of the snapshots and of the time-series rows.
-fn intervals<const D: usize>(sim: &Simulation<D>) -> (f64, f64) {
-    let end = sim.case.time.end;
-    let snap_every = sim.case.time.output_interval;
-    let series_every = sim
-        .case
-        .diagnostics
-        .interval
-        .unwrap_or(if snap_every > 0.0 {
-            snap_every / 10.0
-        } else {
-            end / 200.0
-        });
-    (snap_every, series_every)
+    drive(Run::resume(sim, output, schedule), &options)
 }
 
 fn progress_bar(quiet: bool) -> ProgressBar {
@@ -244,12 +236,12 @@ fn progress_bar(quiet: bool) -> ProgressBar {
     bar
 }
 
-/// SIGINT and SIGTERM set a flag that the step loop reads between steps; a second
-/// signal of either kind ends the process at once.
+/// The stop signals set a flag that the step loop reads between steps; a second
+/// signal of any of them ends the process at once.
 fn stop_signal() -> Result<Arc<AtomicUsize>> {
     let which = Arc::new(AtomicUsize::new(0));
     let pending = Arc::new(AtomicBool::new(false));
-    for sig in [SIGINT, SIGTERM] {
+    for sig in STOP_SIGNALS {
         flag::register_conditional_shutdown(sig, 128 + sig, Arc::clone(&pending))?;
         flag::register(sig, Arc::clone(&pending))?;
         flag::register_usize(sig, Arc::clone(&which), sig as usize)?;
@@ -257,107 +249,79 @@ fn stop_signal() -> Result<Arc<AtomicUsize>> {
     Ok(which)
 }
 
-/// Steps to the end time, writing snapshots and time series on their intervals, and a
-/// restart file at the end or when a signal stops the run.
-fn drive<const D: usize>(
-    mut sim: Simulation<D>,
-    mut output: Output,
-    mut schedule: Schedule,
-    quiet: bool,
-) -> Result<()> {
+/// Drives the run, prints the summary and turns its ending into the exit status.
+fn drive<const D: usize>(mut run: Run<D>, options: &RunOptions) -> Result<()> {
     let signal = stop_signal()?;
-    let end = sim.case.time.end;
-    let (snap_every, series_every) = intervals(&sim);
-    let max_steps = sim.case.time.max_steps.unwrap_or(u64::MAX);
-    let bar = progress_bar(quiet);
+    let bar = progress_bar(options.quiet);
     let start = Instant::now();
-    let since = sim.counters;
-    let mut outcome = Ok(());
-    let mut last_row = sim.time;
-    while sim.time < end * (1.0 - 1e-12)
-        && sim.counters.steps < max_steps
-        && signal.load(Ordering::Relaxed) == 0
-    {
-        if let Err(e) = sim.step() {
-            outcome = Err(e);
-            break;
-        }
-        if sim.time >= schedule.next_series {
-            let row = sim.series_values();
-            output.series_row(&row)?;
-            schedule.next_series += series_every;
-            last_row = sim.time;
-        }
-        if snap_every > 0.0 && sim.time >= schedule.next_snapshot && sim.time < end {
-            sim.sync_pressure();
-            write_state(&sim, &mut output)?;
-            schedule.next_snapshot += snap_every;
-            schedule.snapshots += 1;
-        }
-        let steps_per_s = (sim.counters.steps - since.steps) as f64 / start.elapsed().as_secs_f64();
+    let first_step = run.sim.counters.steps;
+    let end = run.sim.case.time.end;
+    let mut on_step = |sim: &Simulation<D>| {
+        let steps = sim.counters.steps - first_step;
+        let steps_per_s = steps as f64 / start.elapsed().as_secs_f64();
         bar.set_position((1000.0 * sim.time / end) as u64);
         bar.set_message(format!(
             "{:.4} s, {} steps, {steps_per_s:.1} steps/s",
             sim.time, sim.counters.steps
         ));
-    }
+    };
+    let ending = run.drive(&mut Control {
+        checkpoint_every: options.checkpoint_every,
+        stop: &signal,
+        on_step: &mut on_step,
+    });
     bar.finish_and_clear();
-    let wall = start.elapsed().as_secs_f64();
-    if outcome.is_ok() {
-        sim.sync_pressure();
-    }
-    let interrupted = signal.load(Ordering::Relaxed);
-    if interrupted == 0 && sim.time > last_row {
-        // the closing row (an interrupted run gets it when it reaches its end)
-        let row = sim.series_values();
-        output.series_row(&row)?;
-    }
-    let last = write_state(&sim, &mut output)?;
-    schedule.snapshots += 1;
-    summary(&sim, &output, wall, since, schedule.initial_energy);
-    if let Err(e) = outcome {
-        println!(
-            "last snapshot   {} (the state at which the run stopped)",
-            last.display()
-        );
-        return Err(e.into());
-    }
-    let restart_file = output.dir().join("restart.h5");
-    restart::write(&restart_file, &sim.checkpoint()?, &schedule)?;
-    println!("restart         {}", restart_file.display());
-    match interrupted {
-        0 => Ok(()),
-        sig => Err(Interrupted {
-            signal: if sig == SIGINT as usize {
-                "SIGINT"
-            } else {
-                "SIGTERM"
-            },
-            code: 128 + sig as u8,
-            time: sim.time,
-            step: sim.counters.steps,
-            restart: restart_file,
+    summary(&run);
+    let (time, step) = (run.sim.time, run.sim.counters.steps);
+    let failure = |code: u8, message: String| Err(Failure { message, code }.into());
+    match ending {
+        Ending::Finished { restart } => {
+            println!("restart         {}", restart.display());
+            Ok(())
         }
-        .into()),
+        Ending::Stopped { signal, restart } => {
+            println!("restart         {}", restart.display());
+            failure(
+                128 + signal as u8,
+                format!(
+                    "interrupted by {} at t = {time:.6} s (step {step}); continue with: \
+                     sph-cli run --restart {}",
+                    signal_name(signal),
+                    restart.display()
+                ),
+            )
+        }
+        Ending::Unstable { error, snapshot } => {
+            match snapshot {
+                Ok(path) => println!(
+                    "last snapshot   {} (the state at which the run stopped)",
+                    path.display()
+                ),
+                Err(e) => println!("last snapshot   not written: {e}"),
+            }
+            failure(3, error.to_string())
+        }
+        Ending::OutputFailed { error, restart } => {
+            let what = match restart {
+                Ok(path) => format!(
+                    "restart file written at t = {time:.6} s (step {step}): once there is room, \
+                     continue with: sph-cli run --restart {} --force",
+                    path.display()
+                ),
+                Err(e) => format!("no restart file could be written either ({e})"),
+            };
+            failure(2, format!("{error}; {what}"))
+        }
     }
 }
 
-/// One snapshot, with the free surface and shifting velocity when the run has them.
-fn write_state<const D: usize>(sim: &Simulation<D>, output: &mut Output) -> Result<PathBuf> {
-    let steps = sim.counters.steps;
-    Ok(sim.with_extras(|extras| output.snapshot(&sim.particles, extras, sim.time, steps))?)
-}
-
-fn summary<const D: usize>(
-    sim: &Simulation<D>,
-    output: &Output,
-    wall: f64,
-    since: Counters,
-    initial_energy: f64,
-) {
+fn summary<const D: usize>(run: &Run<D>) {
+    let (sim, output, since) = (&run.sim, &run.output, run.since);
+    let wall = run.wall.as_secs_f64();
     let n = sim.n_fluid();
     let c = sim.counters;
     let e1 = sim.energies();
+    let initial_energy = run.schedule.initial_energy;
     println!("case            {} ({}D)", sim.case.name, D);
     println!(
         "particles       {} fluid, {} wall",
@@ -393,6 +357,13 @@ fn summary<const D: usize>(
         "walls           {} fluid particles inside a wall at the end",
         sim.wall_crossings()
     );
+    let (lo, hi) = (sim.domain.lo, sim.domain.hi);
+    println!(
+        "removed         {} fluid particles left the domain {:?} – {:?}",
+        sim.removed(),
+        lo.as_slice(),
+        hi.as_slice()
+    );
     println!(
         "energy          E_k+E_p+E_c: {:.6e} → {:.6e} J (change {:+.3e})",
         initial_energy,
@@ -400,7 +371,17 @@ fn summary<const D: usize>(
         e1.total() - initial_energy
     );
     if let Some(b) = sim.budget {
-        println!("                ∫(P_V+P_D)dt = {:+.3e} J", b.dissipated);
+        println!(
+            "                ∫(P_V+P_D+P_W)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
+            b.dissipated, b.removed_energy
+        );
+        let caveats = sim.budget_caveats();
+        if !caveats.is_empty() {
+            println!(
+                "                the budget is incomplete: {}",
+                caveats.join("; ")
+            );
+        }
     }
     println!(
         "output          {} (open particles.xmf in ParaView)",

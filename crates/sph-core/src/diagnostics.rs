@@ -30,9 +30,20 @@ impl Energies {
 
 /// E_k, E_p and E_c of the fluid.
 pub fn energies<const D: usize>(p: &Particles<D>, eos: &LinearEos, g: &Vector<D>) -> Energies {
+    let fluid: Vec<bool> = p.kind.iter().map(|&k| k == Kind::Fluid).collect();
+    energies_of(p, &fluid, eos, g)
+}
+
+/// E_k, E_p and E_c of the particles flagged in `which`.
+pub fn energies_of<const D: usize>(
+    p: &Particles<D>,
+    which: &[bool],
+    eos: &LinearEos,
+    g: &Vector<D>,
+) -> Energies {
     (0..p.len())
         .into_par_iter()
-        .filter(|&i| p.kind[i] == Kind::Fluid)
+        .filter(|&i| which[i])
         .map(|i| {
             let m = p.mass[i];
             Energies {
@@ -141,7 +152,7 @@ pub fn wall_crossings<const D: usize>(case: &Case, p: &Particles<D>) -> usize {
     };
     let tanks: Vec<_> = case.tank.iter().map(|t| (t, t.open_faces(D))).collect();
     let in_tank_wall = |x: &Vector<D>, (t, open): &(&crate::case::TankConfig, Vec<(usize, i8)>)| {
-        let pad = t.layers as f64 * dx;
+        let pad = t.layer_count(case) as f64 * dx;
         let within_layers = (0..D).all(|d| x[d] > t.lo[d] - pad && x[d] < t.hi[d] + pad);
         let past_closed_face = (0..D).any(|d| {
             let below = x[d] < t.lo[d] - 0.5 * dx && !open.contains(&(d, -1));

@@ -2,24 +2,29 @@
 //!
 //! Periodic directions wrap pair distances by the minimum-image convention:
 //! `x_ij ← x_ij - L round(x_ij / L)`. Non-periodic directions carry `L = 0`, so
-//! the same branch-free expression leaves them untouched.
+//! the same branch-free expression leaves them untouched. Along the open (non-periodic)
+//! directions the box bounds the flow: a fluid particle beyond it has left the flow
+//! ([`Domain::escaped`]) and is removed from the run.
 
 use crate::particles::Vector;
 
 #[derive(Debug, Clone, Copy)]
 pub struct Domain<const D: usize> {
-    /// Lower corner of the periodic box (unused along open directions).
+    /// Lower corner of the box.
     pub lo: Vector<D>,
+    /// Upper corner of the box.
+    pub hi: Vector<D>,
     /// Period along each direction, 0 where the direction is open.
     pub period: Vector<D>,
     inv_period: Vector<D>,
 }
 
 impl<const D: usize> Domain<D> {
-    /// A domain with no periodic direction.
+    /// An unbounded domain with no periodic direction.
     pub fn open() -> Self {
         Self {
-            lo: Vector::zeros(),
+            lo: Vector::repeat(f64::NEG_INFINITY),
+            hi: Vector::repeat(f64::INFINITY),
             period: Vector::zeros(),
             inv_period: Vector::zeros(),
         }
@@ -37,6 +42,7 @@ impl<const D: usize> Domain<D> {
         }
         Self {
             lo,
+            hi,
             period,
             inv_period,
         }
@@ -54,6 +60,12 @@ impl<const D: usize> Domain<D> {
             r[d] -= self.period[d] * (r[d] * self.inv_period[d]).round();
         }
         r
+    }
+
+    /// Whether `x` lies beyond the box along an open direction (false for a
+    /// non-finite coordinate, which is the stability guard's to report).
+    pub fn escaped(&self, x: &Vector<D>) -> bool {
+        (0..D).any(|d| self.period[d] == 0.0 && (x[d] < self.lo[d] || x[d] > self.hi[d]))
     }
 
     /// Brings a position back into the periodic box.

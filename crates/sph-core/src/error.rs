@@ -3,7 +3,7 @@
 
 use thiserror::Error;
 
-#[derive(Debug, Error)]
+#[derive(Debug, Clone, Error)]
 pub enum SphError {
     /// The case file cannot be read or parsed.
     #[error("{path}: {message}")]

@@ -1,6 +1,10 @@
 //! Builds the initial particle set of a case: fluid blocks on a lattice, tank and
 //! wall boxes as layers of fixed dummy particles, the initial density (hydrostatic
-//! or from an analytic field), masses `m_i = ρ_i V0`, and the sound speed.
+//! or from an analytic field), masses `m_i = ρ_i V0`, the sound speed and the domain.
+//!
+//! What only the built particles can tell is checked here: fluid inside walls or in
+//! two blocks at once, an initial field that does not fit the fluid it fills, probes
+//! that no fluid can reach, particles outside the domain.
 
 use crate::case::{BoxConfig, Case, InitialField, Shape};
 use crate::domain::Domain;
@@ -42,10 +46,13 @@ fn lattice<const D: usize>(lo: &Vector<D>, hi: &Vector<D>, dx: f64) -> Vec<Vecto
 
 /// Builds particles, domain, EOS and gravity for a validated case of dimension `D`.
 pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
-    assert_eq!(
-        case.dimension, D,
-        "case dimension and solver dimension differ"
-    );
+    if case.dimension != D {
+        return Err(SphError::invalid(
+            "dimension",
+            case.dimension,
+            format!("{D} (the dimension of the solver this case was given to)"),
+        ));
+    }
     let dx = case.dx();
     let gravity: Vector<D> = vector(&case.gravity());
     let rho0 = case.fluid.density;
@@ -123,7 +130,9 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         particles.push(Kind::Wall, x, u, rho0, rho0 * volume);
     }
     check_overlap(&particles, dx)?;
+    check_initial_field(case, &particles)?;
     let domain = domain_of(case, &particles)?;
+    check_probes(case, &domain)?;
     Ok(Setup {
         particles,
         domain,
@@ -219,7 +228,7 @@ fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector<D>)> {
     let mut points = Vec::new();
     for t in &case.tank {
         let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
-        let pad = Vector::<D>::repeat(t.layers as f64 * dx);
+        let pad = Vector::<D>::repeat(t.layer_count(case) as f64 * dx);
         let open = t.open_faces(D);
         let lid: Vector<D> = t
             .lid_velocity
@@ -293,13 +302,23 @@ fn overlap_error<const D: usize>(p: &Particles<D>, i: usize, j: usize, r: f64) -
     )
 }
 
+/// The domain of the case: its `[domain]` box, or the particles' bounding box widened
+/// on every side by half its extent along that axis (at least 10Δx), so that fluid
+/// leaving the initial geometry (off an open tank, or splashing high) is removed well
+/// away from it. Every particle must start inside the box.
 fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Domain<D>> {
     let Some(dom) = &case.domain else {
-        return Ok(Domain::open());
+        let (mut lo, mut hi) = (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN));
+        for x in &particles.x {
+            lo = lo.inf(x);
+            hi = hi.sup(x);
+        }
+        let pad = ((hi - lo) * 0.5).map(|p| p.max(10.0 * case.dx()));
+        return Ok(Domain::new(lo - pad, hi + pad, [false; D]));
     };
-    let periodic: [bool; D] = std::array::from_fn(|d| dom.periodic[d]);
+    let periodic: [bool; D] = std::array::from_fn(|d| dom.is_periodic(d));
     let (lo, hi): (Vector<D>, Vector<D>) = (vector(&dom.lo), vector(&dom.hi));
-    let support = case.h() * case.particles.kernel.support();
+    let support = case.support();
     for d in (0..D).filter(|&d| periodic[d]) {
         let period = hi[d] - lo[d];
         if period < 3.3 * support {
@@ -313,16 +332,136 @@ fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Do
             ));
         }
     }
-    for (x, kind) in particles.x.iter().zip(&particles.kind) {
-        if (0..D).any(|d| periodic[d] && (x[d] < lo[d] || x[d] > hi[d])) {
+    let outside = |x: &Vector<D>| (0..D).any(|d| x[d] < lo[d] || x[d] > hi[d]);
+    if let Some(k) = particles.x.iter().position(outside) {
+        return Err(SphError::invalid(
+            "domain",
+            format!("lo = {:?}, hi = {:?}", dom.lo, dom.hi),
+            format!(
+                "a box holding every particle (a {:?} particle lies at {:?})",
+                particles.kind[k],
+                particles.x[k].as_slice()
+            ),
+        ));
+    }
+    Ok(Domain::new(lo, hi, periodic))
+}
+
+/// An analytic initial field must fit the fluid it is laid over: the elliptic drop and
+/// the rotating square take their pressure from the radius and side they are given
+/// (zero on the free surface), and the Taylor-Green field must be periodic with the
+/// domain. A mismatch gives negative pressure outside a smaller disc, or a jump.
+fn check_initial_field<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<()> {
+    let dx = case.dx();
+    let fluid = || {
+        (0..particles.len())
+            .filter(|&i| particles.kind[i] == Kind::Fluid)
+            .map(|i| particles.x[i])
+    };
+    let fits = |extent: f64, size: f64| extent <= size + 1e-9 * size && extent >= size - dx;
+    match case.initial {
+        Some(InitialField::EllipticDrop { radius, .. }) => {
+            let extent = fluid().map(|x| x.norm()).fold(0.0, f64::max);
+            if !fits(extent, radius) {
+                return Err(field_mismatch("initial.radius", radius, "radius", extent));
+            }
+        }
+        Some(InitialField::RotatingSquare { side, .. }) => {
+            let extent = 2.0 * (fluid().map(|x| x.amax()).fold(0.0, f64::max) + 0.5 * dx);
+            if !fits(extent, side) {
+                return Err(field_mismatch("initial.side", side, "side", extent));
+            }
+        }
+        Some(InitialField::TaylorGreen { wavelength, .. }) => {
+            let periods: Vec<f64> = match &case.domain {
+                Some(dom) if (0..D).all(|d| dom.is_periodic(d)) => {
+                    (0..D).map(|d| dom.hi[d] - dom.lo[d]).collect()
+                }
+                _ => Vec::new(),
+            };
+            let whole = |p: &f64| {
+                let k = p / wavelength;
+                k.round() >= 1.0 && (k - k.round()).abs() < 1e-6
+            };
+            if periods.is_empty() || !periods.iter().all(whole) {
+                return Err(SphError::invalid(
+                    "initial.wavelength",
+                    wavelength,
+                    format!(
+                        "a wavelength that divides the periodic box (domain.lo, domain.hi \
+                         periodic along every axis; periods {periods:?})"
+                    ),
+                ));
+            }
+        }
+        None => {}
+    }
+    Ok(())
+}
+
+fn field_mismatch(key: &str, value: f64, what: &str, extent: f64) -> SphError {
+    SphError::invalid(
+        key,
+        value,
+        format!(
+            "the {what} of the fluid the field fills, centred at the origin (the fluid_block \
+             particles span a {what} of {extent:.6} m)"
+        ),
+    )
+}
+
+/// A probe must lie where fluid can be: inside the domain along its open directions and
+/// not deeper than the kernel support inside a wall, or it can never read a pressure.
+fn check_probes<const D: usize>(case: &Case, domain: &Domain<D>) -> Result<()> {
+    let support = case.support();
+    for (k, probe) in case.diagnostics.probes.iter().enumerate() {
+        let x: Vector<D> = vector(probe);
+        let reason = if domain.escaped(&x) {
+            Some(format!(
+                "a point inside the domain lo = {:?}, hi = {:?} (domain.lo, domain.hi; without \
+                 [domain], the particles' bounding box widened by half its size)",
+                domain.lo.as_slice(),
+                domain.hi.as_slice()
+            ))
+        } else {
+            buried_in_wall(case, &x, support).map(|wall| {
+                format!("a point fluid can reach, not deeper than the kernel support inside {wall}")
+            })
+        };
+        if let Some(expected) = reason {
             return Err(SphError::invalid(
-                "domain",
-                format!("lo = {:?}, hi = {:?}", dom.lo, dom.hi),
-                format!("a box holding every {kind:?} particle along its periodic axes"),
+                format!("diagnostics.probes[{k}]"),
+                format!("{probe:?}"),
+                expected,
             ));
         }
     }
-    Ok(Domain::new(lo, hi, periodic))
+    Ok(())
+}
+
+/// The wall (`tank[k]` or `wall[k]`) inside which `x` lies deeper than `depth`.
+fn buried_in_wall<const D: usize>(case: &Case, x: &Vector<D>, depth: f64) -> Option<String> {
+    let inside = |lo: &Vector<D>, hi: &Vector<D>| (0..D).all(|d| x[d] > lo[d] && x[d] < hi[d]);
+    for (k, t) in case.tank.iter().enumerate() {
+        let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
+        let pad = Vector::<D>::repeat(t.layer_count(case) as f64 * case.dx());
+        let open = t.open_faces(D);
+        let beyond_closed_face = (0..D).any(|d| {
+            (x[d] < lo[d] - depth && !open.contains(&(d, -1)))
+                || (x[d] > hi[d] + depth && !open.contains(&(d, 1)))
+        });
+        if inside(&(lo - pad), &(hi + pad)) && beyond_closed_face {
+            return Some(format!("tank[{k}]"));
+        }
+    }
+    for (k, b) in case.wall.iter().enumerate() {
+        let (lo, hi): (Vector<D>, Vector<D>) = (vector(&b.lo), vector(&b.hi));
+        let margin = Vector::<D>::repeat(depth);
+        if inside(&(lo + margin), &(hi - margin)) {
+            return Some(format!("wall[{k}]"));
+        }
+    }
+    None
 }
 
 #[cfg(test)]

@@ -4,7 +4,8 @@
 //! The data flow of a run: [`case::Case`] (parsed and validated TOML) →
 //! [`geometry::build`] (particles, EOS, domain) → [`scheme::build_model`] (options
 //! resolved once into a monomorphised [`equations::Scheme`]) → [`simulation::Simulation`]
-//! stepping with an [`integrator`] → [`diagnostics`] and [`output`].
+//! stepping with an [`integrator`] → [`diagnostics`] and [`output`], driven to its end
+//! with its run folder by [`run::Run`].
 
 pub mod boundary;
 pub mod case;
@@ -23,6 +24,7 @@ pub mod output;
 pub mod particles;
 pub mod renormalisation;
 pub mod restart;
+pub mod run;
 pub mod scheme;
 pub mod shifting;
 pub mod simulation;

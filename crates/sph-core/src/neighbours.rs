@@ -52,40 +52,68 @@ impl<const D: usize> Default for Grid<D> {
     }
 }
 
+/// The most cells a grid may have per particle (plus a fixed allowance): a scene whose
+/// particles are scattered over a large box gets wider cells instead of memory that
+/// grows with the box.
+const CELLS_PER_PARTICLE: usize = 4;
+const CELLS_ALLOWANCE: usize = 4096;
+
 impl<const D: usize> Grid<D> {
+    /// Cells of side at least `radius` covering the particles: the whole period along
+    /// periodic directions, the particles' extent along the others.
     fn new(x: &[Vector<D>], domain: &Domain<D>, radius: f64) -> Self {
         let mut origin = Vector::zeros();
-        let mut cell = Vector::zeros();
-        let mut dims = [1usize; D];
+        let mut extent = Vector::zeros();
         let mut periodic = [false; D];
         for d in 0..D {
             if domain.is_periodic(d) {
-                let n = (domain.period[d] / radius).floor() as usize;
-                assert!(
-                    n >= 3,
-                    "periodic length {} along axis {d} is shorter than 3 kernel supports ({radius})",
-                    domain.period[d]
-                );
                 origin[d] = domain.lo[d];
-                cell[d] = domain.period[d] / n as f64;
-                dims[d] = n;
+                extent[d] = domain.period[d];
                 periodic[d] = true;
             } else {
                 let (lo, hi) = x.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
                     (lo.min(p[d]), hi.max(p[d]))
                 });
                 origin[d] = lo;
-                cell[d] = radius;
-                dims[d] = (((hi - lo) / radius).floor() as usize + 1).max(1);
+                extent[d] = (hi - lo).max(0.0);
             }
         }
-        Self {
-            origin,
-            cell,
-            dims,
-            periodic,
-            cell_start: Vec::new(),
+        let budget = (CELLS_PER_PARTICLE * x.len() + CELLS_ALLOWANCE) as f64;
+        let mut side = radius;
+        loop {
+            let dims = Self::dims_for(&extent, &periodic, side);
+            if dims.iter().map(|&n| n as f64).product::<f64>() <= budget {
+                let cell = Vector::from_fn(|d, _| {
+                    if periodic[d] {
+                        extent[d] / dims[d] as f64
+                    } else {
+                        side
+                    }
+                });
+                return Self {
+                    origin,
+                    cell,
+                    dims,
+                    periodic,
+                    cell_start: Vec::new(),
+                };
+            }
+            side *= 1.5;
         }
+    }
+
+    /// Cells per axis for cells of side at least `side`: along a periodic direction a
+    /// whole number of cells fills the period (one cell when the period is shorter
+    /// than two sides; the stencil then visits each cell once).
+    fn dims_for(extent: &Vector<D>, periodic: &[bool; D], side: f64) -> [usize; D] {
+        std::array::from_fn(|d| {
+            let n = (extent[d] / side).floor();
+            if periodic[d] {
+                n.max(1.0) as usize
+            } else {
+                n as usize + 1
+            }
+        })
     }
 
     /// The grid for positions `x` and the stable order that sorts them by cell.
@@ -124,6 +152,8 @@ impl<const D: usize> Grid<D> {
     }
 
     /// Calls `f(cell)` for the cell of `c` and its (up to 3^D) distinct neighbours.
+    /// Along a periodic direction of fewer than three cells the wrapped offsets meet,
+    /// and each cell is visited once.
     fn for_adjacent(&self, c: &[usize; D], mut f: impl FnMut(usize)) {
         let total = 3usize.pow(D as u32);
         'outer: for m in 0..total {
@@ -135,6 +165,10 @@ impl<const D: usize> Grid<D> {
                 let k = c[d] as i64 + off;
                 let n = self.dims[d] as i64;
                 if self.periodic[d] {
+                    // offsets -1, 0, +1 name distinct cells only when n >= 3
+                    if (n == 1 && off != 0) || (n == 2 && off == 1) {
+                        continue 'outer;
+                    }
                     nc[d] = k.rem_euclid(n) as usize;
                 } else if k < 0 || k >= n {
                     continue 'outer;
@@ -229,18 +263,23 @@ impl<const D: usize> NeighbourList<D> {
         self.indices.len() as f64 / (self.offsets.len() - 1).max(1) as f64
     }
 
+    /// The largest displacement of a particle since the build (infinite when the
+    /// particle set changed since).
+    pub fn max_displacement(&self, x: &[Vector<D>], domain: &Domain<D>) -> f64 {
+        if self.x_ref.len() != x.len() {
+            return f64::INFINITY;
+        }
+        x.par_iter()
+            .zip(self.x_ref.par_iter())
+            .map(|(a, b)| domain.separation(a, b).norm_squared())
+            .reduce(|| 0.0, f64::max)
+            .sqrt()
+    }
+
     /// True when some particle may have moved more than `s/2` since the build,
     /// counting a further `lookahead` that the coming step may add.
     pub fn needs_rebuild(&self, x: &[Vector<D>], domain: &Domain<D>, lookahead: f64) -> bool {
-        if self.x_ref.len() != x.len() {
-            return true;
-        }
-        let max_d2 = x
-            .par_iter()
-            .zip(self.x_ref.par_iter())
-            .map(|(a, b)| domain.separation(a, b).norm_squared())
-            .reduce(|| 0.0, f64::max);
-        max_d2.sqrt() + lookahead > 0.5 * self.skin
+        self.max_displacement(x, domain) + lookahead > 0.5 * self.skin
     }
 
     /// Calls `f(j)` for every particle in the cells that may hold particles within
@@ -366,6 +405,54 @@ mod tests {
     #[test]
     fn matches_brute_force_3d_periodic() {
         check::<3>([true, true, true], 5);
+    }
+
+    /// A list radius above a third of the period (two cells, or one) along a periodic
+    /// axis: every pair once, by minimum image.
+    #[test]
+    fn matches_brute_force_with_two_and_one_periodic_cells() {
+        for (support, skin) in [(0.3, 0.1), (0.45, 0.04)] {
+            let mut p = random_set::<2>(400, 9);
+            let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), [true, true]);
+            let (list, _) = NeighbourList::build(&mut p, &domain, support, skin);
+            let r2 = (support + skin) * (support + skin);
+            for i in 0..p.len() {
+                let mut brute: Vec<u32> = (0..p.len())
+                    .filter(|&j| {
+                        j != i
+                            && !(p.kind[i] == Kind::Wall && p.kind[j] == Kind::Wall)
+                            && domain.separation(&p.x[i], &p.x[j]).norm_squared() < r2
+                    })
+                    .map(|j| j as u32)
+                    .collect();
+                let mut got = list.of(i).to_vec();
+                brute.sort_unstable();
+                got.sort_unstable();
+                assert_eq!(got, brute, "radius {}, particle {i}", support + skin);
+            }
+        }
+    }
+
+    /// Particles scattered far apart get wide cells, not a grid as large as their box.
+    #[test]
+    fn sparse_particles_keep_the_grid_small() {
+        let mut p = random_set::<3>(200, 11);
+        for (k, x) in p.x.iter_mut().enumerate().take(4) {
+            *x *= 1.0e4 * (k + 1) as f64;
+        }
+        let (list, _) = NeighbourList::build(&mut p, &Domain::open(), 0.05, 0.01);
+        let cells: usize = list.grid.dims.iter().product();
+        assert!(
+            cells <= CELLS_PER_PARTICLE * 200 + CELLS_ALLOWANCE,
+            "{cells} cells"
+        );
+        for i in 0..p.len() {
+            let brute = (0..p.len())
+                .filter(|&j| j != i && !(p.kind[i] == Kind::Wall && p.kind[j] == Kind::Wall))
+                .filter(|&j| (p.x[i] - p.x[j]).norm() < 0.06)
+                .count();
+            assert_eq!(list.of(i).len(), brute, "particle {i}");
+        }
     }
 
     #[test]

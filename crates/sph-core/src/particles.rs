@@ -30,10 +30,12 @@ pub struct Particles<const D: usize> {
     /// Constant masses `m_i = ρ_i(t0) V0`.
     pub mass: Vec<f64>,
     pub kind: Vec<Kind>,
-    /// Original index of each particle.
+    /// Stable identity of each particle: its index at creation, never reused.
     pub id: Vec<u32>,
     /// Velocity seen by the viscous term at walls: `2 u_wall - ũ` (no-slip); unused for fluid.
     pub u_wall_visc: Vec<Vector<D>>,
+    /// The id the next particle created gets (ids of removed particles are not reused).
+    pub next_id: u32,
 }
 
 impl<const D: usize> Particles<D> {
@@ -45,9 +47,10 @@ impl<const D: usize> Particles<D> {
         self.x.is_empty()
     }
 
-    /// Appends one particle; `id` is its index at creation.
+    /// Appends one particle with the next free id.
     pub fn push(&mut self, kind: Kind, x: Vector<D>, u: Vector<D>, rho: f64, mass: f64) {
-        self.id.push(self.x.len() as u32);
+        self.id.push(self.next_id);
+        self.next_id += 1;
         self.x.push(x);
         self.u.push(u);
         self.rho.push(rho);
@@ -77,6 +80,27 @@ impl<const D: usize> Particles<D> {
         permute(&mut self.id, order);
         permute(&mut self.u_wall_visc, order);
     }
+}
+
+impl<const D: usize> Particles<D> {
+    /// Keeps the particles whose `keep` flag is set, in their order.
+    pub fn retain(&mut self, keep: &[bool]) {
+        retain(&mut self.x, keep);
+        retain(&mut self.u, keep);
+        retain(&mut self.rho, keep);
+        retain(&mut self.p, keep);
+        retain(&mut self.mass, keep);
+        retain(&mut self.kind, keep);
+        retain(&mut self.id, keep);
+        retain(&mut self.u_wall_visc, keep);
+    }
+}
+
+/// Keeps `v[k]` where `keep[k]`.
+pub fn retain<T>(v: &mut Vec<T>, keep: &[bool]) {
+    debug_assert_eq!(v.len(), keep.len());
+    let mut flags = keep.iter();
+    v.retain(|_| *flags.next().unwrap_or(&false));
 }
 
 /// Gathers `v[order[k]]` into position `k`.

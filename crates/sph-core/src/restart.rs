@@ -2,15 +2,17 @@
 //!
 //! Bit-for-bit continuation needs more than the physical state `(x, u, ρ)`:
 //! - the particles in their current storage order (the pair sums run in list order,
-//!   and floating-point addition is not associative);
+//!   and floating-point addition is not associative), and the next free id;
 //! - the neighbour lists, rebuilt from the positions of their last build and the same
 //!   skin, so that the next list rebuild happens at the same step;
-//! - the step count, time, last Δt, the acceleration that sizes the list skin and the
-//!   energy budget;
+//! - the step count, time, last Δt, the acceleration that sizes the list skin, the
+//!   energy budget and the count of particles removed;
 //! - the output schedule of the driver ([`Schedule`]).
 //!
-//! The file is HDF5 (`restart.h5` in a run folder), written atomically. It carries the
-//! case as TOML, so it is self-contained.
+//! The file is HDF5 (`restart.h5` in a run folder, the one before it kept as
+//! `restart.prev.h5`), written atomically and synced by [`crate::output::Output`]. It
+//! carries the case as TOML, so it is self-contained. Reading checks every shape and
+//! value it relies on: a damaged or foreign file is an error naming what is wrong.
 
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
@@ -24,6 +26,8 @@ pub struct Schedule {
     pub next_snapshot: f64,
     /// Time of the next time-series row.
     pub next_series: f64,
+    /// Time of the next periodic restart file (infinite when the case asks for none).
+    pub next_restart: f64,
     /// Snapshots written so far (the next one gets this index).
     pub snapshots: u64,
     /// `E_k + E_p + E_c` at the start of the run, for the closing summary.
@@ -50,21 +54,17 @@ fn flat<const D: usize>(v: &[Vector<D>]) -> Vec<f64> {
     v.iter().flat_map(|x| x.iter().copied()).collect()
 }
 
-fn vectors<const D: usize>(raw: &[f64]) -> Vec<Vector<D>> {
-    raw.chunks_exact(D)
-        .map(Vector::<D>::from_column_slice)
-        .collect()
-}
-
-/// Writes `checkpoint` and `schedule` to `path` (atomically: a temporary file renamed).
-pub fn write<const D: usize>(
+/// Writes `checkpoint` and `schedule` to `path` and syncs it to disk (the caller
+/// renames it into place).
+pub fn write_file<const D: usize>(
     path: &Path,
     checkpoint: &Checkpoint<D>,
     schedule: &Schedule,
 ) -> Result<()> {
-    let tmp = path.with_extension("h5.partial");
-    write_h5(&tmp, checkpoint, schedule).map_err(|e| SphError::output(path, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| SphError::output(path, e))
+    write_h5(path, checkpoint, schedule).map_err(|e| SphError::output(path, e))?;
+    std::fs::File::open(path)
+        .and_then(|f| f.sync_all())
+        .map_err(|e| SphError::output(path, e))
 }
 
 fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf5::Result<()> {
@@ -84,7 +84,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
     if let Some(v) = &c.shift_velocity {
         vector("shifting_velocity", v)?;
     }
-    crate::output::write_scalars(&file, p)?;
+    crate::output::snapshot::write_scalars(&file, p)?;
     file.new_dataset::<f64>()
         .shape(n)
         .create("mass")?
@@ -100,6 +100,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
         ("last_acceleration", c.last_acceleration),
         ("next_snapshot", s.next_snapshot),
         ("next_series", s.next_series),
+        ("next_restart", s.next_restart),
         ("initial_energy", s.initial_energy),
     ];
     for (name, v) in scalars {
@@ -110,98 +111,191 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
         ("steps", c.counters.steps),
         ("evaluations", c.counters.evaluations),
         ("rebuilds", c.counters.rebuilds),
+        ("removed", c.counters.removed),
         ("snapshots", s.snapshots),
+        ("next_id", p.next_id as u64),
     ];
     for (name, v) in counts {
         file.new_attr::<u64>().create(name)?.write_scalar(&v)?;
     }
     if let Some(b) = &c.budget {
-        let v = [b.dissipated, b.last.viscous, b.last.diffusive, b.last.wall];
+        let v = [
+            b.dissipated,
+            b.last.viscous,
+            b.last.diffusive,
+            b.last.wall,
+            b.removed_energy,
+        ];
         file.new_attr::<f64>()
-            .shape(4)
+            .shape(v.len())
             .create("energy_budget")?
             .write_raw(&v)?;
     }
+    crate::output::snapshot::write_creator(&file)?;
     file.close()
 }
 
 /// The dimension of the run stored in `path`.
 pub fn dimension(path: &Path) -> Result<usize> {
     let read = || -> hdf5::Result<u64> { hdf5::File::open(path)?.attr("dimension")?.read_scalar() };
-    read()
-        .map(|d| d as usize)
-        .map_err(|e| SphError::output(path, format!("not a deltasph restart file ({e})")))
+    match read() {
+        Ok(d @ (2 | 3)) => Ok(d as usize),
+        Ok(d) => Err(SphError::output(
+            path,
+            format!("dimension {d} is not 2 or 3"),
+        )),
+        Err(e) => Err(SphError::output(
+            path,
+            format!("not a deltasph restart file ({e})"),
+        )),
+    }
 }
 
-/// Reads a restart file written by [`write`] for a `D`-dimensional run.
+/// Reads a restart file written by [`write_file`] for a `D`-dimensional run.
 pub fn read<const D: usize>(path: &Path) -> Result<(Checkpoint<D>, Schedule)> {
-    let bad = |e: hdf5::Error| SphError::output(path, format!("not a deltasph restart file ({e})"));
     if dimension(path)? != D {
         return Err(SphError::output(path, format!("not a {D}D restart file")));
     }
-    read_h5(path).map_err(bad)
+    let file = hdf5::File::open(path).map_err(|e| SphError::output(path, e))?;
+    let reader = Reader { file: &file, path };
+    reader.read()
 }
 
-fn read_h5<const D: usize>(path: &Path) -> hdf5::Result<(Checkpoint<D>, Schedule)> {
-    let file = hdf5::File::open(path)?;
-    let f64s = |name: &str| -> hdf5::Result<Vec<f64>> { file.dataset(name)?.read_raw() };
-    let vecs = |name: &str| -> hdf5::Result<Vec<Vector<D>>> { Ok(vectors(&f64s(name)?)) };
-    let scalar = |name: &str| -> hdf5::Result<f64> { file.attr(name)?.read_scalar() };
-    let count = |name: &str| -> hdf5::Result<u64> { file.attr(name)?.read_scalar() };
-    let kind = file
-        .dataset("kind")?
-        .read_raw::<u8>()?
-        .into_iter()
-        .map(|k| if k == 0 { Kind::Fluid } else { Kind::Wall })
-        .collect();
-    let particles = Particles {
-        x: vecs("position")?,
-        u: vecs("velocity")?,
-        rho: f64s("density")?,
-        p: f64s("pressure")?,
-        mass: f64s("mass")?,
-        kind,
-        id: file.dataset("id")?.read_raw()?,
-        u_wall_visc: vecs("wall_viscous_velocity")?,
-    };
-    let case_bytes: Vec<u8> = file.dataset("case_toml")?.read_raw()?;
-    let budget = match file.attr("energy_budget") {
-        Ok(a) => {
-            let v: Vec<f64> = a.read_raw()?;
-            let mut b = EnergyBudget {
-                dissipated: v[0],
-                ..Default::default()
-            };
-            (b.last.viscous, b.last.diffusive, b.last.wall) = (v[1], v[2], v[3]);
-            Some(b)
+/// Reads and checks the datasets of one restart file.
+struct Reader<'a> {
+    file: &'a hdf5::File,
+    path: &'a Path,
+}
+
+impl Reader<'_> {
+    fn corrupt(&self, what: impl std::fmt::Display) -> SphError {
+        SphError::output(self.path, format!("damaged restart file: {what}"))
+    }
+
+    fn dataset<T: hdf5::H5Type>(&self, name: &str, shape: &[usize]) -> Result<Vec<T>> {
+        let ds = self
+            .file
+            .dataset(name)
+            .map_err(|e| self.corrupt(format!("no dataset {name} ({e})")))?;
+        if ds.shape() != shape {
+            return Err(self.corrupt(format!(
+                "dataset {name} has shape {:?}, expected {shape:?}",
+                ds.shape()
+            )));
         }
-        Err(_) => None,
-    };
-    let checkpoint = Checkpoint {
-        case_toml: String::from_utf8_lossy(&case_bytes).into_owned(),
-        particles,
-        list_positions: vecs("list_positions")?,
-        skin: scalar("skin")?,
-        time: scalar("time")?,
-        dt: scalar("dt")?,
-        counters: Counters {
-            steps: count("steps")?,
-            evaluations: count("evaluations")?,
-            rebuilds: count("rebuilds")?,
-        },
-        last_acceleration: scalar("last_acceleration")?,
-        budget,
-        shift_velocity: file
-            .dataset("shifting_velocity")
-            .ok()
-            .map(|d| d.read_raw().map(|v: Vec<f64>| vectors(&v)))
-            .transpose()?,
-    };
-    let schedule = Schedule {
-        next_snapshot: scalar("next_snapshot")?,
-        next_series: scalar("next_series")?,
-        snapshots: count("snapshots")?,
-        initial_energy: scalar("initial_energy")?,
-    };
-    Ok((checkpoint, schedule))
+        ds.read_raw::<T>().map_err(|e| {
+            self.corrupt(format!(
+                "dataset {name} unreadable as the expected type ({e})"
+            ))
+        })
+    }
+
+    fn vectors<const D: usize>(&self, name: &str, n: usize) -> Result<Vec<Vector<D>>> {
+        let raw: Vec<f64> = self.dataset(name, &[n, D])?;
+        Ok(raw
+            .chunks_exact(D)
+            .map(Vector::<D>::from_column_slice)
+            .collect())
+    }
+
+    fn attr<T: hdf5::H5Type>(&self, name: &str) -> Result<T> {
+        self.file
+            .attr(name)
+            .and_then(|a| a.read_scalar::<T>())
+            .map_err(|e| self.corrupt(format!("attribute {name} ({e})")))
+    }
+
+    fn read<const D: usize>(&self) -> Result<(Checkpoint<D>, Schedule)> {
+        let n = self
+            .file
+            .dataset("id")
+            .map_err(|e| self.corrupt(format!("no dataset id ({e})")))?
+            .size();
+        let kind = self
+            .dataset::<u8>("kind", &[n])?
+            .into_iter()
+            .map(|k| match k {
+                0 => Ok(Kind::Fluid),
+                1 => Ok(Kind::Wall),
+                other => Err(self.corrupt(format!("particle kind {other} (expected 0 or 1)"))),
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let id: Vec<u32> = self.dataset("id", &[n])?;
+        let next_id = match self.attr::<u64>("next_id") {
+            Ok(v) => u32::try_from(v).map_err(|_| self.corrupt(format!("next_id {v}")))?,
+            Err(_) => id.iter().max().map_or(0, |m| m + 1),
+        };
+        if id.iter().any(|&i| i >= next_id) {
+            return Err(self.corrupt("a particle id at or above next_id"));
+        }
+        let particles = Particles {
+            x: self.vectors("position", n)?,
+            u: self.vectors("velocity", n)?,
+            rho: self.dataset("density", &[n])?,
+            p: self.dataset("pressure", &[n])?,
+            mass: self.dataset("mass", &[n])?,
+            kind,
+            id,
+            u_wall_visc: self.vectors("wall_viscous_velocity", n)?,
+            next_id,
+        };
+        let case_bytes: Vec<u8> = self
+            .file
+            .dataset("case_toml")
+            .and_then(|d| d.read_raw())
+            .map_err(|e| self.corrupt(format!("no case ({e})")))?;
+        let case_toml = String::from_utf8(case_bytes)
+            .map_err(|_| self.corrupt("the case text is not UTF-8"))?;
+        let shift_velocity = match self.file.dataset("shifting_velocity") {
+            Ok(_) => Some(self.vectors("shifting_velocity", n)?),
+            Err(_) => None,
+        };
+        let checkpoint = Checkpoint {
+            case_toml,
+            particles,
+            list_positions: self.vectors("list_positions", n)?,
+            skin: self.attr("skin")?,
+            time: self.attr("time")?,
+            dt: self.attr("dt")?,
+            counters: Counters {
+                steps: self.attr("steps")?,
+                evaluations: self.attr("evaluations")?,
+                rebuilds: self.attr("rebuilds")?,
+                removed: self.attr("removed").unwrap_or(0),
+            },
+            last_acceleration: self.attr("last_acceleration")?,
+            budget: self.budget()?,
+            shift_velocity,
+        };
+        let schedule = Schedule {
+            next_snapshot: self.attr("next_snapshot")?,
+            next_series: self.attr("next_series")?,
+            next_restart: self.attr("next_restart").unwrap_or(f64::INFINITY),
+            snapshots: self.attr("snapshots")?,
+            initial_energy: self.attr("initial_energy")?,
+        };
+        Ok((checkpoint, schedule))
+    }
+
+    fn budget(&self) -> Result<Option<EnergyBudget>> {
+        let Ok(a) = self.file.attr("energy_budget") else {
+            return Ok(None);
+        };
+        let v: Vec<f64> = a
+            .read_raw()
+            .map_err(|e| self.corrupt(format!("attribute energy_budget ({e})")))?;
+        if !(4..=5).contains(&v.len()) {
+            return Err(self.corrupt(format!(
+                "energy_budget holds {} values, expected 5",
+                v.len()
+            )));
+        }
+        let mut b = EnergyBudget {
+            dissipated: v[0],
+            removed_energy: v.get(4).copied().unwrap_or(0.0),
+            ..Default::default()
+        };
+        (b.last.viscous, b.last.diffusive, b.last.wall) = (v[1], v[2], v[3]);
+        Ok(Some(b))
+    }
 }

@@ -11,7 +11,7 @@ use crate::geometry;
 use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::neighbours::NeighbourList;
 use crate::output::Extras;
-use crate::particles::{Particles, Vector};
+use crate::particles::{Kind, Particles, Vector};
 use crate::restart::Checkpoint;
 use crate::scheme::{build_model, viscosity_k, wall_viscous_weight};
 use crate::timestep::TimeStepControl;
@@ -21,19 +21,28 @@ use rayon::prelude::*;
 /// The smallest skin of the neighbour lists, as a fraction of the kernel support.
 const MIN_SKIN: f64 = 0.1;
 
+/// The skin is sized to 2.5 times the reach of the coming step, so that the lists
+/// last a few steps.
+const SKIN_OVER_REACH: f64 = 2.5;
+
 /// Counters for throughput reports.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Counters {
     pub steps: u64,
     pub evaluations: u64,
     pub rebuilds: u64,
+    /// Fluid particles removed because they left the domain.
+    pub removed: u64,
 }
 
-/// The running energy budget of SCHEME.md §10 (only when the case asks for it).
+/// The running energy budget of SCHEME.md §10 (only when the case asks for it):
+/// `E_k + E_p + E_c + removed_energy - dissipated` stays at its initial value.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct EnergyBudget {
     /// `∫ (P_V + P_D + P_W) dt` so far (trapezoidal rule over steps).
     pub dissipated: f64,
+    /// `E_k + E_p + E_c` the removed particles carried out of the domain.
+    pub removed_energy: f64,
     pub last: Powers,
 }
 
@@ -56,8 +65,10 @@ pub struct Simulation<const D: usize> {
 }
 
 impl<const D: usize> Simulation<D> {
-    /// Builds particles and scheme from a validated case.
+    /// Builds particles and scheme from a case, which is validated first (a case built
+    /// in code, or from Python, gets the checks of a case file).
     pub fn new(case: Case) -> Result<Self> {
+        case.validate()?;
         let setup = geometry::build::<D>(&case)?;
         let physics = Physics {
             eos: setup.eos,
@@ -78,10 +89,11 @@ impl<const D: usize> Simulation<D> {
             IntegratorChoice::Rk4 => Box::<Rk4<D>>::default(),
             IntegratorChoice::Symplectic => Box::<Symplectic<D>>::default(),
         };
+        // minimum image is unique while the list radius stays below half of every period
         let support = model.support_radius();
         let max_skin = (0..D)
             .filter(|&d| setup.domain.is_periodic(d))
-            .map(|d| setup.domain.period[d] / 3.0 - support)
+            .map(|d| (0.5 * setup.domain.period[d] - support) * (1.0 - 1e-9))
             .fold(f64::INFINITY, f64::min);
         let budget = case.diagnostics.energy_budget.then(EnergyBudget::default);
         let shift_velocity = (case.scheme.shifting == ShiftingChoice::DeltaPlus)
@@ -141,37 +153,37 @@ impl<const D: usize> Simulation<D> {
         }
         let mut sim = Self::new(case)?;
         let c = checkpoint;
-        let n = sim.particles.len();
-        let p = &c.particles;
-        let lengths = [
-            p.x.len(),
-            p.u.len(),
-            p.rho.len(),
-            p.p.len(),
-            p.mass.len(),
-            p.kind.len(),
-            p.id.len(),
-            p.u_wall_visc.len(),
-            c.list_positions.len(),
-        ];
         let corrupt = |what: &str| SphError::output("restart", what.to_string());
-        if lengths.iter().any(|&l| l != n) {
-            return Err(corrupt(
-                "particle arrays do not match the case's particle count",
-            ));
+        let walls = |p: &Particles<D>| p.len() - p.n_fluid();
+        if walls(&c.particles) != walls(&sim.particles) {
+            return Err(corrupt("its wall particles do not match its case"));
+        }
+        if sim.shift_velocity.is_some() {
+            match &c.shift_velocity {
+                Some(v) if v.len() == c.particles.len() => {}
+                _ => {
+                    return Err(corrupt(
+                        "the case shifts particles but no shifting velocity is stored",
+                    ))
+                }
+            }
+            sim.shift_velocity = c.shift_velocity;
         }
         let support = sim.model.support_radius();
-        sim.list = NeighbourList::restore(&p.kind, &sim.domain, support, c.skin, c.list_positions)
-            .ok_or_else(|| corrupt("particles are not in the order of their neighbour lists"))?;
+        sim.list = NeighbourList::restore(
+            &c.particles.kind,
+            &sim.domain,
+            support,
+            c.skin,
+            c.list_positions,
+        )
+        .ok_or_else(|| corrupt("particles are not in the order of their neighbour lists"))?;
         sim.particles = c.particles;
         sim.time = c.time;
         sim.dt = c.dt;
         sim.counters = c.counters;
         sim.last_acceleration = c.last_acceleration;
         sim.budget = c.budget;
-        if sim.shift_velocity.is_some() {
-            sim.shift_velocity = c.shift_velocity;
-        }
         Ok(sim)
     }
 
@@ -197,15 +209,27 @@ impl<const D: usize> Simulation<D> {
             .sqrt()
     }
 
-    /// Largest displacement one step may add: `Δt_max (|u|max + |a|max Δt_max)`.
-    fn step_reach(&self) -> f64 {
-        let dt = self.control.acoustic();
-        let shift = if self.shift_velocity.is_some() {
+    /// Largest displacement a step of `dt` may add: `Δt (1.2|u|max + |a|max Δt)`, plus
+    /// the shifting cap when particles are shifted.
+    fn reach(&self, dt: f64, speed: f64) -> f64 {
+        dt * (1.2 * speed + self.last_acceleration * dt) + self.shift_cap()
+    }
+
+    fn shift_cap(&self) -> f64 {
+        if self.shift_velocity.is_some() {
             crate::shifting::CAP * self.case.h()
         } else {
             0.0
-        };
-        dt * (1.2 * self.max_speed() + self.last_acceleration * dt) + shift
+        }
+    }
+
+    /// The longest step whose [`Self::reach`] stays within `room`: the root of
+    /// `|a| Δt² + 1.2|u| Δt = room - shift`. It binds only when the skin could not be
+    /// made wide enough (small periodic boxes), so that the lists never miss a pair.
+    fn dt_within(&self, room: f64, speed: f64) -> f64 {
+        let b = (room - self.shift_cap()).max(0.0);
+        let (v, a) = (1.2 * speed, self.last_acceleration);
+        2.0 * b / (v + (v * v + 4.0 * a * b).sqrt()).max(f64::MIN_POSITIVE)
     }
 
     /// Moves the fluid particles by the δ+-SPH shifting of a step of length `dt`.
@@ -235,7 +259,9 @@ impl<const D: usize> Simulation<D> {
     /// Rebuilds lists (and reorders particles by cell) with a skin covering `reach`.
     fn rebuild(&mut self, reach: f64) {
         let support = self.model.support_radius();
-        let skin = (MIN_SKIN * support).max(2.5 * reach).min(self.max_skin);
+        let skin = (MIN_SKIN * support)
+            .max(SKIN_OVER_REACH * reach)
+            .min(self.max_skin);
         let (list, _) = NeighbourList::build(&mut self.particles, &self.domain, support, skin);
         self.list = list;
         self.counters.rebuilds += 1;
@@ -274,18 +300,19 @@ impl<const D: usize> Simulation<D> {
 
     /// Advances one step, shortened to land on `limit` when it would pass it.
     pub fn step_until(&mut self, limit: f64) -> Result<()> {
-        let reach = self.step_reach();
-        if self
-            .list
-            .needs_rebuild(&self.particles.x, &self.domain, reach)
-        {
+        let speed = self.max_speed();
+        let reach = self.reach(self.control.acoustic(), speed);
+        let mut moved = self.list.max_displacement(&self.particles.x, &self.domain);
+        if moved + reach > 0.5 * self.list.skin {
             self.rebuild(reach);
+            moved = 0.0;
         }
         if self.case.scheme.tensile_control {
             let surface = self.free_surface();
             let interior = surface.near.iter().map(|near| !near).collect();
             self.model.set_tensile_control(Some(interior));
         }
+        let dt_lists = self.dt_within(0.5 * self.list.skin - moved, speed);
         let mut cx = Context {
             model: self.model.as_mut(),
             list: &self.list,
@@ -295,7 +322,7 @@ impl<const D: usize> Simulation<D> {
             .integrator
             .begin(&mut self.particles, &mut cx)
             .max_acceleration();
-        let mut dt = self.control.dt(a_max);
+        let mut dt = self.control.dt(a_max).min(dt_lists);
         let remaining = limit - self.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
             dt = remaining;
@@ -311,6 +338,7 @@ impl<const D: usize> Simulation<D> {
         self.time += dt;
         self.counters.steps += 1;
         self.counters.evaluations += self.integrator.evaluations_per_step() as u64;
+        self.remove_escaped();
         if self.budget.is_some() {
             self.rates();
             let now = self.model.powers(&self.particles, &self.list, &self.domain);
@@ -319,6 +347,62 @@ impl<const D: usize> Simulation<D> {
             b.last = now;
         }
         self.check_stability()
+    }
+
+    /// Removes the fluid particles that left the domain along an open direction (their
+    /// energy goes to the budget's `removed_energy`) and rebuilds the lists when any did.
+    fn remove_escaped(&mut self) {
+        let (p, domain) = (&self.particles, &self.domain);
+        let keep: Vec<bool> = (0..p.len())
+            .into_par_iter()
+            .map(|i| p.kind[i] != Kind::Fluid || !domain.escaped(&p.x[i]))
+            .collect();
+        let gone = keep.iter().filter(|&&k| !k).count();
+        if gone == 0 {
+            return;
+        }
+        if let Some(b) = self.budget.as_mut() {
+            let ph = self.model.physics();
+            let leaving: Vec<bool> = keep.iter().map(|k| !k).collect();
+            b.removed_energy +=
+                diagnostics::energies_of(&self.particles, &leaving, &ph.eos, &ph.gravity).total();
+        }
+        self.particles.retain(&keep);
+        if let Some(v) = self.shift_velocity.as_mut() {
+            crate::particles::retain(v, &keep);
+        }
+        self.counters.removed += gone as u64;
+        let reach = self.reach(self.control.acoustic(), self.max_speed());
+        self.rebuild(reach);
+    }
+
+    /// Why the energy budget of this case does not close, when it does not: terms that
+    /// change the energy without a power term in the budget (empty when it closes).
+    pub fn budget_caveats(&self) -> Vec<&'static str> {
+        let case = &self.case;
+        let mut why = Vec::new();
+        if case.tank.iter().any(|t| t.lid_velocity.is_some()) {
+            why.push("a sliding lid does work on the fluid that no power term counts");
+        }
+        if case.scheme.walls == crate::case::WallCondition::NoSlip {
+            why.push("the no-slip wall term makes P_V not sign-definite");
+        }
+        if self.shift_velocity.is_some() {
+            why.push("particle shifting moves particles without a power term");
+        }
+        if case.scheme.tensile_control {
+            why.push("tensile instability control is not energy-conserving");
+        }
+        let g = self.physics().gravity;
+        if (0..D).any(|d| self.domain.is_periodic(d) && g[d] != 0.0) {
+            why.push("gravity along a periodic axis: E_p jumps when particles wrap");
+        }
+        why
+    }
+
+    /// Fluid particles removed so far because they left the domain.
+    pub fn removed(&self) -> u64 {
+        self.counters.removed
     }
 
     fn check_stability(&self) -> Result<()> {
@@ -412,11 +496,13 @@ impl<const D: usize> Simulation<D> {
                     "viscous_power",
                     "diffusive_power",
                     "wall_power",
+                    "removed_energy",
                 ]
                 .map(String::from),
             );
         }
         h.push("max_density_variation".into());
+        h.push("removed".into());
         h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
         if diag.surge_front_axis.is_some() {
             h.push("surge_front".into());
@@ -433,9 +519,16 @@ impl<const D: usize> Simulation<D> {
             v.extend([e.kinetic, e.potential, e.internal, e.total()]);
         }
         if let Some(b) = self.budget {
-            v.extend([b.dissipated, b.last.viscous, b.last.diffusive, b.last.wall]);
+            v.extend([
+                b.dissipated,
+                b.last.viscous,
+                b.last.diffusive,
+                b.last.wall,
+                b.removed_energy,
+            ]);
         }
         v.push(self.max_density_variation());
+        v.push(self.counters.removed as f64);
         if !diag.probes.is_empty() {
             self.sync_pressure();
             for probe in &diag.probes {

@@ -1,8 +1,10 @@
 //! Particle state as numpy arrays in particle-id order. The solver reorders its
 //! arrays by cell whenever it rebuilds the neighbour lists; row `i` of every array
 //! handed to Python is always the particle with id `i`, so arrays from different
-//! steps line up. Arrays going out are fresh copies; arrays coming in are checked
-//! for type, dtype, shape and finiteness before anything is touched.
+//! steps line up. There is a row for every id ever given: a particle that left the
+//! domain keeps its row, filled with NaN (kind 255). Arrays going out are fresh
+//! copies; arrays coming in are checked for type, dtype, shape and finiteness (of the
+//! rows of particles still in the run) before anything is touched.
 
 use numpy::ndarray::{Array1, Array2, ArrayView1, ArrayView2};
 use numpy::{
@@ -13,13 +15,14 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use sph_core::Vector;
 
-/// `(N, D)` float64 copy of per-particle vectors, row = id.
+/// `(rows, D)` float64 copy of per-particle vectors, row = id, NaN for removed ids.
 pub fn vectors<'py, const D: usize>(
     py: Python<'py>,
     ids: &[u32],
+    rows: usize,
     v: &[Vector<D>],
 ) -> Bound<'py, PyArray2<f64>> {
-    let mut out = Array2::<f64>::zeros((v.len(), D));
+    let mut out = Array2::<f64>::from_elem((rows, D), f64::NAN);
     for (k, &id) in ids.iter().enumerate() {
         for d in 0..D {
             out[(id as usize, d)] = v[k][d];
@@ -28,14 +31,15 @@ pub fn vectors<'py, const D: usize>(
     out.into_pyarray(py)
 }
 
-/// `(N,)` copy of a per-particle scalar, row = id.
-pub fn scalars<'py, T: numpy::Element + Copy + Default, S: Copy>(
+/// `(rows,)` copy of a per-particle scalar, row = id, `fill` for removed ids.
+pub fn scalars<'py, T: numpy::Element + Copy, S: Copy>(
     py: Python<'py>,
     ids: &[u32],
+    rows: usize,
     v: &[S],
-    map: impl Fn(S) -> T,
+    (fill, map): (T, impl Fn(S) -> T),
 ) -> Bound<'py, PyArray1<T>> {
-    let mut out = Array1::<T>::from_elem(v.len(), T::default());
+    let mut out = Array1::<T>::from_elem(rows, fill);
     for (k, &id) in ids.iter().enumerate() {
         out[id as usize] = map(v[k]);
     }
@@ -76,14 +80,17 @@ pub fn read_vectors<const D: usize>(
     obj: &Bound<'_, PyAny>,
     name: &str,
     ids: &[u32],
+    rows: usize,
 ) -> PyResult<Vec<Vector<D>>> {
-    checked(obj, name, &[ids.len(), D])?;
+    checked(obj, name, &[rows, D])?;
     let array = obj.cast::<PyArray2<f64>>()?.readonly();
     let view: ArrayView2<f64> = array.as_array();
-    if let Some((row, _)) = view.indexed_iter().find(|(_, v)| !v.is_finite()) {
+    let bad = ids
+        .iter()
+        .find(|&&id| (0..D).any(|d| !view[(id as usize, d)].is_finite()));
+    if let Some(row) = bad {
         return Err(PyValueError::new_err(format!(
-            "{name}: row {} holds a non-finite value",
-            row.0
+            "{name}: row {row} holds a non-finite value"
         )));
     }
     Ok(ids
@@ -93,11 +100,16 @@ pub fn read_vectors<const D: usize>(
 }
 
 /// Reads a checked `(N,)` float64 array into the solver's current order.
-pub fn read_scalars(obj: &Bound<'_, PyAny>, name: &str, ids: &[u32]) -> PyResult<Vec<f64>> {
-    checked(obj, name, &[ids.len()])?;
+pub fn read_scalars(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    ids: &[u32],
+    rows: usize,
+) -> PyResult<Vec<f64>> {
+    checked(obj, name, &[rows])?;
     let array = obj.cast::<PyArray1<f64>>()?.readonly();
     let view: ArrayView1<f64> = array.as_array();
-    if let Some((row, _)) = view.indexed_iter().find(|(_, v)| !v.is_finite()) {
+    if let Some(row) = ids.iter().find(|&&id| !view[id as usize].is_finite()) {
         return Err(PyValueError::new_err(format!(
             "{name}: row {row} holds a non-finite value"
         )));

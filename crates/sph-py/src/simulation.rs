@@ -12,6 +12,14 @@ use sph_core::{Case, Kind, Simulation, SphError};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+/// The `kind` of a row whose particle left the domain.
+const REMOVED: u8 = 255;
+
+/// Rows of the state arrays: one per id ever given.
+fn rows<const D: usize>(s: &Simulation<D>) -> usize {
+    s.particles.next_id as usize
+}
+
 /// How long the solver runs detached before it looks at Ctrl-C and reports progress.
 const SLICE: Duration = Duration::from_millis(100);
 
@@ -74,7 +82,7 @@ fn set_velocities<const D: usize>(
     s: &mut Simulation<D>,
     velocities: &Bound<'_, PyAny>,
 ) -> PyResult<()> {
-    let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles.id)?;
+    let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles.id, rows(s))?;
     let moving_wall =
         (0..u.len()).find(|&k| s.particles.kind[k] == Kind::Wall && u[k].norm_squared() > 0.0);
     if let Some(k) = moving_wall {
@@ -89,7 +97,7 @@ fn set_velocities<const D: usize>(
 }
 
 fn set_density<const D: usize>(s: &mut Simulation<D>, density: &Bound<'_, PyAny>) -> PyResult<()> {
-    let rho = arrays::read_scalars(density, "density", &s.particles.id)?;
+    let rho = arrays::read_scalars(density, "density", &s.particles.id, rows(s))?;
     if let Some(k) = rho.iter().position(|&r| r <= 0.0) {
         return Err(PyValueError::new_err(format!(
             "density: row {} = {}, expected a positive density",
@@ -236,7 +244,13 @@ impl PySimulation {
     /// Advances exactly ``n`` steps (default 1), with the interpreter released.
     #[pyo3(signature = (n=1))]
     fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
-        let target = Target::Steps(self.n_steps() + n);
+        let Some(last) = self.n_steps().checked_add(n) else {
+            return Err(PyValueError::new_err(format!(
+                "n = {n}: expected a step count below {} (2^64 minus the steps taken)",
+                u64::MAX - self.n_steps()
+            )));
+        };
+        let target = Target::Steps(last);
         self.drive(py, target, None)
     }
 
@@ -270,7 +284,15 @@ impl PySimulation {
         self.case().name.clone()
     }
 
-    /// Number of particles, fluid and wall.
+    /// Fluid particles removed so far because they left the domain (their rows in the
+    /// state arrays hold NaN, kind 255).
+    #[getter]
+    fn n_removed(&self) -> u64 {
+        each!(&self.solver, s => s.removed())
+    }
+
+    /// Number of particles in the run, fluid and wall (the state arrays have a row
+    /// for every id ever given: this plus ``n_removed``).
     #[getter]
     fn n_particles(&self) -> usize {
         each!(&self.solver, s => s.particles.len())
@@ -309,20 +331,20 @@ impl PySimulation {
     /// Positions [m], float64 array (N, D), a copy.
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, &s.particles.x))
+        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, rows(s), &s.particles.x))
     }
 
     /// Velocities [m/s], float64 array (N, D), a copy. Walls are fixed (zero).
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, &s.particles.u))
+        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, rows(s), &s.particles.u))
     }
 
     /// Density [kg/m³], float64 array (N,), a copy; walls carry their extrapolated value.
     #[getter]
     fn density<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.fresh_pressure();
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.rho, |v| v))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.rho, (f64::NAN, |v| v)))
     }
 
     /// Pressure [Pa], float64 array (N,), a copy: the EOS for fluid, the
@@ -330,19 +352,19 @@ impl PySimulation {
     #[getter]
     fn pressure<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.fresh_pressure();
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.p, |v| v))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.p, (f64::NAN, |v| v)))
     }
 
     /// Mass [kg] (per unit depth in 2D), float64 array (N,), a copy.
     #[getter]
     fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.mass, |v| v))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.mass, (f64::NAN, |v| v)))
     }
 
     /// Particle kind, uint8 array (N,): 0 fluid (deltasph.FLUID), 1 wall (deltasph.WALL).
     #[getter]
     fn kind<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u8>> {
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, &s.particles.kind, |k| k as u8))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.kind, (REMOVED, |k| k as u8)))
     }
 
     /// Fluid particles inside a wall now: past the first layer of wall particles of a
@@ -391,10 +413,10 @@ impl PySimulation {
         let dict = PyDict::new(py);
         each!(&self.solver, s => {
             let f = s.free_surface();
-            let id = &s.particles.id;
-            dict.set_item("on_surface", arrays::scalars(py, id, &f.on_surface, |b| b))?;
-            dict.set_item("normal", arrays::vectors(py, id, &f.normal))?;
-            dict.set_item("lambda", arrays::scalars(py, id, &f.lambda, |v| v))?;
+            let (id, n) = (&s.particles.id, rows(s));
+            dict.set_item("on_surface", arrays::scalars(py, id, n, &f.on_surface, (false, |b| b)))?;
+            dict.set_item("normal", arrays::vectors(py, id, n, &f.normal))?;
+            dict.set_item("lambda", arrays::scalars(py, id, n, &f.lambda, (f64::NAN, |v| v)))?;
         });
         Ok(dict)
     }
@@ -417,7 +439,8 @@ impl PySimulation {
 
     /// Writes the state to ``path`` (HDF5, the layout of the command line's
     /// snapshots) and an XDMF index beside it (``path`` with ``.xmf``) for ParaView.
-    /// Existing files are kept (OSError) unless ``overwrite``. Returns the index path.
+    /// Existing files are kept (OSError) unless ``overwrite``; even then only files
+    /// that deltasph wrote are replaced, never another program's. Returns the index path.
     #[pyo3(signature = (path, overwrite=false))]
     fn write_snapshot(
         &mut self,

@@ -55,7 +55,10 @@ class Simulation:
     def name(self) -> str: ...
     @property
     def n_particles(self) -> int:
-        """Fluid and wall particles."""
+        """Fluid and wall particles in the run."""
+    @property
+    def n_removed(self) -> int:
+        """Fluid particles removed after leaving the domain (NaN rows, kind 255)."""
     @property
     def n_fluid(self) -> int: ...
     @property
@@ -106,4 +109,7 @@ class Simulation:
     def write_snapshot(
         self, path: Union[str, PathLike[str]], overwrite: bool = False
     ) -> Path:
-        """Writes HDF5 at ``path`` and an XDMF index beside it; returns the index path."""
+        """Writes HDF5 at ``path`` and an XDMF index beside it; returns the index path.
+
+        Existing files are refused unless ``overwrite``; even then only files written
+        by deltasph are replaced."""

@@ -1,0 +1,462 @@
+//! The case schema: every table and key of the TOML file as plain data, with its
+//! default. Unknown keys are rejected by serde; values are checked in
+//! [`super::validate`]. All quantities are SI.
+
+use crate::kernel::KernelChoice;
+use serde::{Deserialize, Serialize};
+
+/// A whole case, as written in the TOML file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Run name, a plain file name: the default output folder is `<name>_out`.
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// 2 or 3.
+    pub dimension: usize,
+    pub particles: ParticlesConfig,
+    pub fluid: FluidConfig,
+    #[serde(default)]
+    pub fluid_block: Vec<BoxConfig>,
+    #[serde(default)]
+    pub tank: Vec<TankConfig>,
+    #[serde(default)]
+    pub wall: Vec<BoxConfig>,
+    #[serde(default)]
+    pub domain: Option<DomainConfig>,
+    #[serde(default)]
+    pub initial: Option<InitialField>,
+    #[serde(default)]
+    pub scheme: SchemeConfig,
+    pub time: TimeConfig,
+    #[serde(default)]
+    pub stability: StabilityConfig,
+    #[serde(default)]
+    pub diagnostics: DiagnosticsConfig,
+    #[serde(default)]
+    pub output: OutputConfig,
+}
+
+fn default_name() -> String {
+    "case".into()
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParticlesConfig {
+    /// Initial particle spacing Δx [m].
+    pub spacing: f64,
+    /// Smoothing length over spacing, h/Δx.
+    #[serde(default = "default_h_over_dx")]
+    pub h_over_dx: f64,
+    #[serde(default = "default_kernel")]
+    pub kernel: KernelChoice,
+}
+
+fn default_h_over_dx() -> f64 {
+    1.33
+}
+fn default_kernel() -> KernelChoice {
+    KernelChoice::WendlandC2
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FluidConfig {
+    /// Reference density ρ0 [kg/m³].
+    pub density: f64,
+    /// Gravity vector [m/s²]; zero if absent.
+    #[serde(default)]
+    pub gravity: Option<Vec<f64>>,
+    /// Numerical sound speed c0 [m/s]; from the rule `factor · max(U, sqrt(Δp/ρ0))` if absent.
+    #[serde(default)]
+    pub sound_speed: Option<f64>,
+    #[serde(default = "default_sound_speed_factor")]
+    pub sound_speed_factor: f64,
+    /// Background pressure p_b [Pa] added to the EOS (confined flows only).
+    #[serde(default)]
+    pub background_pressure: f64,
+    /// U_max for the sound-speed rule; default `max(|u0|, sqrt(2 |g| H))`, H the fluid height.
+    #[serde(default)]
+    pub max_velocity: Option<f64>,
+}
+
+fn default_sound_speed_factor() -> f64 {
+    10.0
+}
+
+/// An axis-aligned box `[lo, hi]`, filled with particles on the lattice `lo + (k + ½)Δx`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    /// Initial velocity (fluid blocks only).
+    #[serde(default)]
+    pub velocity: Option<Vec<f64>>,
+    /// Start from the hydrostatic density of a column whose free surface is the box top
+    /// (fluid blocks only; default true).
+    #[serde(default)]
+    pub hydrostatic: Option<bool>,
+    /// Fill the whole box, or only the ellipse (ellipsoid) inscribed in it (fluid
+    /// blocks only; default box).
+    #[serde(default)]
+    pub shape: Option<Shape>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shape {
+    Box,
+    /// The ellipse (3D: ellipsoid) inscribed in the box: a disc when the box is square.
+    Ellipsoid,
+}
+
+/// A tank: wall layers around the inner box `[lo, hi]`, except on the open faces.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TankConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    /// Number of wall particle layers; default the fewest that cover the kernel
+    /// support, `ceil(R/Δx)`.
+    #[serde(default)]
+    pub layers: Option<usize>,
+    /// Faces left open, among "-x", "+x", "-y", "+y", "-z", "+z"; default the top face.
+    #[serde(default)]
+    pub open: Option<Vec<String>>,
+    /// Velocity of the wall layers above the top face (the last axis): a lid sliding in
+    /// its own plane, as in the lid-driven cavity. Its particles keep their places and
+    /// carry this velocity into the continuity and (no-slip) viscous terms. The top face
+    /// must be closed and the velocity tangential to it.
+    #[serde(default)]
+    pub lid_velocity: Option<Vec<f64>>,
+}
+
+impl TankConfig {
+    /// The open faces as (axis, side ±1); the top face (last axis, +) by default.
+    pub fn open_faces(&self, dim: usize) -> Vec<(usize, i8)> {
+        match &self.open {
+            Some(faces) => faces.iter().filter_map(|f| face_axis(f, dim)).collect(),
+            None => vec![(dim - 1, 1)],
+        }
+    }
+}
+
+/// The computational box. Along periodic axes particles wrap around; along the others
+/// a fluid particle that leaves the box is removed from the run. Without a `[domain]`
+/// the box is the particles' initial bounding box widened by its own size on every
+/// side (see [`crate::geometry`]).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DomainConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+    /// Periodic flag per axis; default none.
+    #[serde(default)]
+    pub periodic: Option<Vec<bool>>,
+}
+
+impl DomainConfig {
+    /// Whether axis `d` is periodic.
+    pub fn is_periodic(&self, d: usize) -> bool {
+        self.periodic
+            .as_ref()
+            .is_some_and(|p| p.get(d).copied().unwrap_or(false))
+    }
+}
+
+/// An analytic initial field laid over the fluid blocks.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum InitialField {
+    /// 2D Taylor-Green vortex on a periodic square of side `wavelength`:
+    /// `u = U(-cos kx sin ky, sin kx cos ky)`, `p = -ρ0 U²/4 (cos 2kx + cos 2ky)`, `k = 2π/L`.
+    TaylorGreen { amplitude: f64, wavelength: f64 },
+    /// 2D elliptic drop (Monaghan 1994) of a disc of `radius` R centred at the origin:
+    /// `u = (-A0 x, A0 y)` with `A0 = strain_rate`, `p = ρ0 A0² (R² - x² - y²)/2`.
+    EllipticDrop { strain_rate: f64, radius: f64 },
+    /// 2D rotating square patch (Colagrossi 2005; Sun et al. 2017) of `side` L centred at
+    /// the origin: `u = (ω y, -ω x)` with `ω = angular_velocity`, and the pressure that
+    /// solves ∇²p = 2ρ0ω² with p = 0 on the edges (series in [`crate::geometry`]).
+    RotatingSquare { angular_velocity: f64, side: f64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DiffusionChoice {
+    None,
+    MolteniColagrossi,
+    Ferrari,
+    DeltaSph,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ViscosityChoice {
+    None,
+    Artificial,
+    Physical,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IntegratorChoice {
+    /// Runge-Kutta 4 with the diffusive term frozen over the step.
+    Rk4,
+    /// Second-order symplectic predictor-corrector.
+    Symplectic,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WallCondition {
+    FreeSlip,
+    NoSlip,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SchemeConfig {
+    #[serde(default = "default_diffusion")]
+    pub diffusion: DiffusionChoice,
+    /// δ of the diffusive term.
+    #[serde(default = "default_delta")]
+    pub delta: f64,
+    #[serde(default = "default_viscosity")]
+    pub viscosity: ViscosityChoice,
+    /// α of the artificial viscosity.
+    #[serde(default)]
+    pub alpha: Option<f64>,
+    /// Dynamic viscosity μ [Pa s] of the physical viscosity.
+    #[serde(default)]
+    pub dynamic_viscosity: Option<f64>,
+    #[serde(default = "default_integrator")]
+    pub integrator: IntegratorChoice,
+    /// Courant number of `Δt = CFL h/c0`; default 1.5 (RK4) or 0.15 (symplectic).
+    #[serde(default)]
+    pub cfl: Option<f64>,
+    /// Viscous limit `Δt <= C_ν h²/ν`.
+    /// Viscous limit `Δt <= C_ν h²/ν`; default 0.125 (RK4) or 0.09 (symplectic).
+    #[serde(default)]
+    pub viscous_cfl: Option<f64>,
+    /// Body-force limit `Δt <= C_f sqrt(h/|a|max)`.
+    #[serde(default = "default_force_cfl")]
+    pub force_cfl: f64,
+    #[serde(default = "default_walls")]
+    pub walls: WallCondition,
+    /// Particle shifting after each step.
+    #[serde(default = "default_shifting")]
+    pub shifting: ShiftingChoice,
+    /// Tensile instability control (Sun et al. 2018): `(p_j - p_i)` in the momentum
+    /// equation for interior particles with negative pressure.
+    #[serde(default)]
+    pub tensile_control: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShiftingChoice {
+    None,
+    /// δ+-SPH shifting (Sun et al. 2017) with free-surface treatment.
+    DeltaPlus,
+}
+
+fn default_shifting() -> ShiftingChoice {
+    ShiftingChoice::None
+}
+
+impl Default for SchemeConfig {
+    fn default() -> Self {
+        Self {
+            diffusion: default_diffusion(),
+            delta: default_delta(),
+            viscosity: default_viscosity(),
+            alpha: None,
+            dynamic_viscosity: None,
+            integrator: default_integrator(),
+            cfl: None,
+            viscous_cfl: None,
+            force_cfl: default_force_cfl(),
+            walls: default_walls(),
+            shifting: default_shifting(),
+            tensile_control: false,
+        }
+    }
+}
+
+fn default_diffusion() -> DiffusionChoice {
+    DiffusionChoice::DeltaSph
+}
+fn default_delta() -> f64 {
+    0.1
+}
+fn default_viscosity() -> ViscosityChoice {
+    ViscosityChoice::Artificial
+}
+fn default_integrator() -> IntegratorChoice {
+    IntegratorChoice::Rk4
+}
+fn default_force_cfl() -> f64 {
+    0.25
+}
+fn default_walls() -> WallCondition {
+    WallCondition::FreeSlip
+}
+
+impl SchemeConfig {
+    /// The Courant number in force. The defaults are the largest with which the 2D dam
+    /// break (the most violent example) stays stable to t·sqrt(g/H) = 7 at H/Δx = 15-50:
+    /// RK4 1.5; the symplectic scheme blows up in the run-up jet with 0.4, 0.25 and 0.2
+    /// and holds with 0.15.
+    pub fn cfl(&self) -> f64 {
+        self.cfl.unwrap_or(match self.integrator {
+            IntegratorChoice::Rk4 => 1.5,
+            IntegratorChoice::Symplectic => 0.15,
+        })
+    }
+    /// The viscous number `C_ν` in force. RK4 is stable on the negative real axis up to
+    /// 2.785, the symplectic midpoint scheme up to 2, so its default is 0.125 · 2/2.785
+    /// (0.125 is stable and 0.09 is needed in the 2D Poiseuille case).
+    pub fn viscous_cfl(&self) -> f64 {
+        self.viscous_cfl.unwrap_or(match self.integrator {
+            IntegratorChoice::Rk4 => 0.125,
+            IntegratorChoice::Symplectic => 0.09,
+        })
+    }
+    /// α of the artificial viscosity (default 0.02).
+    pub fn alpha(&self) -> f64 {
+        self.alpha.unwrap_or(0.02)
+    }
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeConfig {
+    /// End time [s].
+    pub end: f64,
+    /// Interval between particle snapshots [s]; 0 writes only the first and last.
+    #[serde(default)]
+    pub output_interval: f64,
+    /// Optional cap on the number of steps.
+    #[serde(default)]
+    pub max_steps: Option<u64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilityConfig {
+    /// Largest admissible |ρ/ρ0 - 1| before the run is stopped.
+    #[serde(default = "default_max_density_variation")]
+    pub max_density_variation: f64,
+    /// Largest admissible Mach number |u|/c0 of a fluid particle. A weakly-compressible
+    /// model is void long before Ma = 1; a particle that fast has been thrown out by a
+    /// blow-up, and flying on it would stretch the neighbour grid without bound.
+    #[serde(default = "default_max_mach")]
+    pub max_mach: f64,
+}
+
+impl Default for StabilityConfig {
+    fn default() -> Self {
+        Self {
+            max_density_variation: default_max_density_variation(),
+            max_mach: default_max_mach(),
+        }
+    }
+}
+
+fn default_max_mach() -> f64 {
+    1.0
+}
+
+fn default_max_density_variation() -> f64 {
+    0.2
+}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiagnosticsConfig {
+    /// Interval of the time series (energies, probes, front) [s]; default output_interval/10.
+    #[serde(default)]
+    pub interval: Option<f64>,
+    /// Write E_k, E_p, E_c, their sum and max |Δρ/ρ0|.
+    #[serde(default)]
+    pub energy: bool,
+    /// Also integrate the viscous and diffusive powers every step (one extra pair loop per step).
+    #[serde(default)]
+    pub energy_budget: bool,
+    /// Pressure probes (Shepard interpolation from fluid particles).
+    #[serde(default)]
+    pub probes: Vec<Vec<f64>>,
+    /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
+    #[serde(default)]
+    pub surge_front_axis: Option<usize>,
+    /// Detect the free surface (Marrone et al. 2010) at each snapshot and write the
+    /// flag, the normal and λ with it.
+    #[serde(default)]
+    pub free_surface: bool,
+}
+
+/// What a run writes besides snapshots and the time series.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputConfig {
+    /// Simulated-time interval between restart files [s]; none by default (a restart
+    /// file is still written at the end, on a stop signal and on a failed write).
+    #[serde(default)]
+    pub restart_interval: Option<f64>,
+}
+
+impl Case {
+    /// Initial particle spacing Δx.
+    pub fn dx(&self) -> f64 {
+        self.particles.spacing
+    }
+
+    /// Smoothing length h.
+    pub fn h(&self) -> f64 {
+        self.particles.h_over_dx * self.particles.spacing
+    }
+
+    /// Kernel support radius R = κh.
+    pub fn support(&self) -> f64 {
+        self.h() * self.particles.kernel.support()
+    }
+
+    /// Gravity vector as a slice of `dimension` components.
+    pub fn gravity(&self) -> Vec<f64> {
+        self.fluid
+            .gravity
+            .clone()
+            .unwrap_or_else(|| vec![0.0; self.dimension])
+    }
+
+    /// The fewest wall layers whose depth covers the kernel support, `ceil(R/Δx)`.
+    pub fn min_wall_layers(&self) -> usize {
+        (self.support() / self.dx() - 1e-9).ceil().max(1.0) as usize
+    }
+}
+
+impl TankConfig {
+    /// Wall layers of this tank: as given, or [`Case::min_wall_layers`].
+    pub fn layer_count(&self, case: &Case) -> usize {
+        self.layers.unwrap_or_else(|| case.min_wall_layers())
+    }
+}
+
+/// The axis and side (`+1`/`-1`) a face name like "+y" stands for.
+pub fn face_axis(face: &str, dim: usize) -> Option<(usize, i8)> {
+    let mut ch = face.chars();
+    let sign = match ch.next()? {
+        '+' => 1,
+        '-' => -1,
+        _ => return None,
+    };
+    let axis = match ch.next()? {
+        'x' => 0,
+        'y' => 1,
+        'z' => 2,
+        _ => return None,
+    };
+    (ch.next().is_none() && axis < dim).then_some((axis, sign))
+}

@@ -1,0 +1,455 @@
+//! Value checks beyond types: ranges, component counts, boxes, the particle budget and
+//! the scheme's options. Checks that need the particles (overlaps, probes against the
+//! domain, initial fields against the fluid they fill) run when the case is built
+//! ([`crate::geometry`]).
+
+use super::schema::*;
+use crate::error::{Result, SphError};
+
+/// The most particles a case may ask for: 2^30, beyond the memory of any one machine
+/// this solver runs on (about 300 bytes a particle).
+pub const MAX_PARTICLES: f64 = 1_073_741_824.0;
+
+impl Case {
+    /// Value checks beyond types; geometry checks that need particles happen when building.
+    pub fn validate(&self) -> Result<()> {
+        let d = self.dimension;
+        if d != 2 && d != 3 {
+            return Err(SphError::invalid("dimension", d, "2 or 3"));
+        }
+        plain_file_name("name", &self.name)?;
+        positive("particles.spacing", self.particles.spacing)?;
+        let ratio = self.particles.h_over_dx;
+        if !(1.0..=3.0).contains(&ratio) {
+            return Err(SphError::invalid(
+                "particles.h_over_dx",
+                ratio,
+                "a value in [1, 3]",
+            ));
+        }
+        positive("fluid.density", self.fluid.density)?;
+        if let Some(g) = &self.fluid.gravity {
+            components("fluid.gravity", g, d)?;
+        }
+        if let Some(c0) = self.fluid.sound_speed {
+            positive("fluid.sound_speed", c0)?;
+        }
+        positive("fluid.sound_speed_factor", self.fluid.sound_speed_factor)?;
+        non_negative("fluid.background_pressure", self.fluid.background_pressure)?;
+        if let Some(u) = self.fluid.max_velocity {
+            non_negative("fluid.max_velocity", u)?;
+        }
+        if self.fluid_block.is_empty() {
+            return Err(SphError::invalid(
+                "fluid_block",
+                "[]",
+                "at least one [[fluid_block]]",
+            ));
+        }
+        for (k, b) in self.fluid_block.iter().enumerate() {
+            check_box(&format!("fluid_block[{k}]"), &b.lo, &b.hi, d)?;
+            if let Some(v) = &b.velocity {
+                components(&format!("fluid_block[{k}].velocity"), v, d)?;
+            }
+        }
+        for (k, b) in self.wall.iter().enumerate() {
+            check_box(&format!("wall[{k}]"), &b.lo, &b.hi, d)?;
+            if b.velocity.is_some() || b.hydrostatic.is_some() || b.shape.is_some() {
+                return Err(SphError::invalid(
+                    format!("wall[{k}]"),
+                    "velocity/hydrostatic/shape",
+                    "only lo and hi (walls are fixed boxes)",
+                ));
+            }
+            self.check_wall_depth(k, b)?;
+        }
+        for (k, t) in self.tank.iter().enumerate() {
+            check_box(&format!("tank[{k}]"), &t.lo, &t.hi, d)?;
+            self.check_tank_layers(k, t)?;
+            for face in t.open.iter().flatten() {
+                if face_axis(face, d).is_none() {
+                    let faces = &["-x", "+x", "-y", "+y", "-z", "+z"][..2 * d];
+                    return Err(SphError::invalid(
+                        format!("tank[{k}].open"),
+                        format!("{face:?}"),
+                        format!("faces among {faces:?}"),
+                    ));
+                }
+            }
+            if let Some(v) = &t.lid_velocity {
+                let key = format!("tank[{k}].lid_velocity");
+                components(&key, v, d)?;
+                let top = ["+x", "+y", "+z"][d - 1];
+                let top_open = t.open_faces(d).contains(&(d - 1, 1));
+                if top_open || v[d - 1] != 0.0 {
+                    return Err(SphError::invalid(
+                        key,
+                        format!("{v:?}"),
+                        format!(
+                            "a velocity tangential to a closed top face (set open without \"{top}\" \
+                             and the last component to 0)"
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(dom) = &self.domain {
+            check_box("domain", &dom.lo, &dom.hi, d)?;
+            if let Some(periodic) = dom.periodic.as_ref().filter(|p| p.len() != d) {
+                return Err(SphError::invalid(
+                    "domain.periodic",
+                    format!("{periodic:?}"),
+                    format!("{d} booleans (dimension = {d})"),
+                ));
+            }
+        }
+        match &self.initial {
+            Some(InitialField::TaylorGreen {
+                amplitude,
+                wavelength,
+            }) => {
+                only_2d(d, "taylor_green")?;
+                finite("initial.amplitude", *amplitude)?;
+                positive("initial.wavelength", *wavelength)?;
+            }
+            Some(InitialField::RotatingSquare {
+                angular_velocity,
+                side,
+            }) => {
+                only_2d(d, "rotating_square")?;
+                finite("initial.angular_velocity", *angular_velocity)?;
+                positive("initial.side", *side)?;
+            }
+            Some(InitialField::EllipticDrop {
+                strain_rate,
+                radius,
+            }) => {
+                only_2d(d, "elliptic_drop")?;
+                finite("initial.strain_rate", *strain_rate)?;
+                positive("initial.radius", *radius)?;
+            }
+            None => {}
+        }
+        self.check_particle_count()?;
+        self.validate_scheme()?;
+        positive("time.end", self.time.end)?;
+        non_negative("time.output_interval", self.time.output_interval)?;
+        positive(
+            "stability.max_density_variation",
+            self.stability.max_density_variation,
+        )?;
+        positive("stability.max_mach", self.stability.max_mach)?;
+        if let Some(i) = self.output.restart_interval {
+            positive("output.restart_interval", i)?;
+        }
+        if let Some(i) = self.diagnostics.interval {
+            positive("diagnostics.interval", i)?;
+        }
+        for (k, p) in self.diagnostics.probes.iter().enumerate() {
+            components(&format!("diagnostics.probes[{k}]"), p, d)?;
+        }
+        if let Some(a) = self.diagnostics.surge_front_axis {
+            if a >= d {
+                return Err(SphError::invalid(
+                    "diagnostics.surge_front_axis",
+                    a,
+                    format!("an axis index below {d}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A tank's layers must reach at least the kernel support deep: fluid by the wall
+    /// would otherwise miss part of its neighbourhood and leak through.
+    fn check_tank_layers(&self, k: usize, t: &TankConfig) -> Result<()> {
+        let (need, layers) = (self.min_wall_layers(), t.layer_count(self));
+        if layers < need {
+            return Err(SphError::invalid(
+                format!("tank[{k}].layers"),
+                layers,
+                format!(
+                    "at least {need} layers: layers·Δx must cover the kernel support R = {:.4} m \
+                     (particles.kernel, particles.h_over_dx = {}); leave layers unset for the minimum",
+                    self.support(),
+                    self.particles.h_over_dx
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A wall box must be at least the kernel support thick along every axis, or fluid
+    /// on either side sees through it.
+    fn check_wall_depth(&self, k: usize, b: &BoxConfig) -> Result<()> {
+        let support = self.support();
+        let thinnest =
+            b.lo.iter()
+                .zip(&b.hi)
+                .map(|(l, h)| h - l)
+                .fold(f64::INFINITY, f64::min);
+        if thinnest < support * (1.0 - 1e-9) {
+            return Err(SphError::invalid(
+                format!("wall[{k}]"),
+                format!("lo = {:?}, hi = {:?}", b.lo, b.hi),
+                format!(
+                    "a box at least the kernel support R = {support:.4} m thick along every axis \
+                     (particles.kernel, particles.h_over_dx)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Refuses a spacing that would ask for more particles than any machine holds
+    /// (before a single one is built): fluid blocks, tanks and wall boxes counted as
+    /// lattice boxes.
+    fn check_particle_count(&self) -> Result<()> {
+        let dx = self.dx();
+        let cells = |lo: &[f64], hi: &[f64], pad: f64| -> f64 {
+            lo.iter()
+                .zip(hi)
+                .map(|(l, h)| ((h - l + 2.0 * pad) / dx).round().max(0.0))
+                .product()
+        };
+        let fluid: f64 = self
+            .fluid_block
+            .iter()
+            .map(|b| cells(&b.lo, &b.hi, 0.0))
+            .sum();
+        let tanks: f64 = self
+            .tank
+            .iter()
+            .map(|t| {
+                cells(&t.lo, &t.hi, t.layer_count(self) as f64 * dx) - cells(&t.lo, &t.hi, 0.0)
+            })
+            .sum();
+        let walls: f64 = self.wall.iter().map(|b| cells(&b.lo, &b.hi, 0.0)).sum();
+        let total = fluid + tanks + walls;
+        if total > MAX_PARTICLES {
+            return Err(SphError::invalid(
+                "particles.spacing",
+                self.particles.spacing,
+                format!(
+                    "a spacing giving at most {MAX_PARTICLES:.1e} particles (this one gives \
+                     about {total:.1e})"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn validate_scheme(&self) -> Result<()> {
+        let s = &self.scheme;
+        if !(0.0..=1.0).contains(&s.delta) {
+            return Err(SphError::invalid(
+                "scheme.delta",
+                s.delta,
+                "a value in [0, 1]",
+            ));
+        }
+        match s.viscosity {
+            ViscosityChoice::Artificial => non_negative("scheme.alpha", s.alpha())?,
+            ViscosityChoice::Physical => match s.dynamic_viscosity {
+                Some(mu) => positive("scheme.dynamic_viscosity", mu)?,
+                None => {
+                    return Err(SphError::invalid(
+                        "scheme.dynamic_viscosity",
+                        "(missing)",
+                        "a positive viscosity μ in Pa·s when scheme.viscosity = \"physical\"",
+                    ))
+                }
+            },
+            ViscosityChoice::None => {}
+        }
+        let cfl = s.cfl();
+        if !(cfl > 0.0 && cfl <= 3.0) {
+            return Err(SphError::invalid(
+                "scheme.cfl",
+                cfl,
+                "a Courant number in (0, 3]",
+            ));
+        }
+        if let Some(c) = s.viscous_cfl {
+            positive("scheme.viscous_cfl", c)?;
+        }
+        positive("scheme.force_cfl", s.force_cfl)
+    }
+}
+
+/// A name that is one plain path component: not empty, no separator, not `.` or
+/// `..`, no control character, so that `<name>_out` stays inside the working folder.
+fn plain_file_name(key: &str, name: &str) -> Result<()> {
+    let bad = name.is_empty()
+        || name == "."
+        || name == ".."
+        || name.len() > 200
+        || name
+            .chars()
+            .any(|c| c == '/' || c == '\\' || c.is_control());
+    if bad {
+        return Err(SphError::invalid(
+            key,
+            format!("{name:?}"),
+            "a plain file name (no path separators, not empty, not \".\" or \"..\", \
+             at most 200 bytes): the default output folder is <name>_out",
+        ));
+    }
+    Ok(())
+}
+
+fn positive(key: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SphError::invalid(key, v, "a positive number"))
+    }
+}
+
+fn non_negative(key: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(SphError::invalid(key, v, "a number >= 0"))
+    }
+}
+
+fn finite(key: &str, v: f64) -> Result<()> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(SphError::invalid(key, v, "a finite number"))
+    }
+}
+
+fn components(key: &str, v: &[f64], d: usize) -> Result<()> {
+    if v.len() != d {
+        return Err(SphError::invalid(
+            key,
+            format!("{v:?}"),
+            format!("{d} components (dimension = {d})"),
+        ));
+    }
+    if v.iter().any(|c| !c.is_finite()) {
+        return Err(SphError::invalid(
+            key,
+            format!("{v:?}"),
+            "finite components",
+        ));
+    }
+    Ok(())
+}
+
+fn check_box(key: &str, lo: &[f64], hi: &[f64], d: usize) -> Result<()> {
+    components(&format!("{key}.lo"), lo, d)?;
+    components(&format!("{key}.hi"), hi, d)?;
+    if lo.iter().zip(hi).any(|(a, b)| b <= a) {
+        return Err(SphError::invalid(
+            format!("{key}.hi"),
+            format!("{hi:?}"),
+            format!("every component above lo = {lo:?}"),
+        ));
+    }
+    Ok(())
+}
+
+fn only_2d(d: usize, field: &str) -> Result<()> {
+    if d == 2 {
+        Ok(())
+    } else {
+        Err(SphError::invalid(
+            "initial.type",
+            format!("\"{field}\""),
+            "dimension = 2",
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{error_of, MINIMAL};
+    use super::super::Case;
+
+    #[test]
+    fn absurd_spacing_is_refused_before_building() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 1e-9"));
+        assert!(
+            e.starts_with("particles.spacing = 0.000000001: expected a spacing giving at most"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn negative_spacing_is_refused() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = -0.01"));
+        assert_eq!(e, "particles.spacing = -0.01: expected a positive number");
+    }
+
+    #[test]
+    fn h_over_dx_out_of_range() {
+        let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nh_over_dx = 7"));
+        assert!(e.starts_with("particles.h_over_dx = 7"), "{e}");
+    }
+
+    #[test]
+    fn wrong_component_count() {
+        let e = error_of(&MINIMAL.replace("gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]"));
+        assert!(
+            e.starts_with("fluid.gravity = [0.0, 0.0, -9.81]: expected 2 components"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn inverted_box() {
+        let e = error_of(&MINIMAL.replace("hi = [0.2, 0.1]", "hi = [0.2, -0.1]"));
+        assert!(e.starts_with("fluid_block[0].hi"), "{e}");
+    }
+
+    #[test]
+    fn physical_viscosity_needs_mu() {
+        let e = error_of(&format!("{MINIMAL}\n[scheme]\nviscosity = \"physical\""));
+        assert!(e.starts_with("scheme.dynamic_viscosity = (missing)"), "{e}");
+    }
+
+    #[test]
+    fn bad_open_face() {
+        let e = error_of(&MINIMAL.replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3]\nopen = [\"+z\"]"));
+        assert!(e.starts_with("tank[0].open = \"+z\""), "{e}");
+    }
+
+    #[test]
+    fn name_must_be_a_plain_file_name() {
+        for bad in ["../x", "/tmp/x", "a/b", "..", "", "a\\\\b"] {
+            let e = error_of(&format!("name = {bad:?}\n{MINIMAL}"));
+            assert!(
+                e.starts_with(&format!("name = {bad:?}: expected a plain file name")),
+                "{e}"
+            );
+        }
+        assert!(Case::from_toml_str(&format!("name = \"dam-break_2\"\n{MINIMAL}")).is_ok());
+    }
+
+    #[test]
+    fn wall_layers_must_cover_the_support() {
+        // h/Δx = 2: R = 4Δx, three layers are too few; unset, the default is four
+        let text = MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nh_over_dx = 2.0");
+        let e = error_of(&text.replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3]\nlayers = 3"));
+        assert!(
+            e.starts_with("tank[0].layers = 3: expected at least 4 layers"),
+            "{e}"
+        );
+        let case = Case::from_toml_str(&text).unwrap();
+        assert_eq!(case.tank[0].layer_count(&case), 4);
+    }
+
+    #[test]
+    fn thin_wall_boxes_are_refused() {
+        let wall = "\n[[wall]]\nlo = [0.3, 0.0]\nhi = [0.32, 0.2]\n";
+        let e = error_of(&format!("{MINIMAL}{wall}"));
+        assert!(
+            e.starts_with("wall[0] = lo = [0.3, 0.0], hi = [0.32, 0.2]: expected a box at least"),
+            "{e}"
+        );
+    }
+}

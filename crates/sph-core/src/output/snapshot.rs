@@ -1,0 +1,286 @@
+//! Particle snapshots: one HDF5 file per output time, and the XDMF index that
+//! ParaView and VisIt open as a time series.
+//!
+//! Each snapshot holds `position`, `velocity` (N×3, z = 0 in 2D), `density`,
+//! `pressure`, `kind` (0 fluid, 1 wall), `id`, and `connectivity` (0..N-1): the index
+//! describes the particles as N vertex cells through it (`Polyvertex`, one node per
+//! element). Without the connectivity, ParaView's Xdmf3 reader (its default for
+//! `.xmf`) builds the points but no cells, and its default Surface view is empty.
+//! Optional fields: `free_surface`, `normal`, `lambda`, `shifting_velocity`.
+//! Attributes: `time`, `step`, `dimension`, `creator` ("deltasph <version>").
+
+use super::atomic;
+use crate::error::{Result, SphError};
+use crate::free_surface::FreeSurface;
+use crate::particles::Particles;
+use hdf5::types::VarLenUnicode;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// What deltasph writes into the `creator` attribute of its HDF5 files and the first
+/// comment of its XDMF files.
+pub const CREATOR: &str = concat!("deltasph ", env!("CARGO_PKG_VERSION"));
+
+/// Optional per-particle fields written with a snapshot, in the current particle order.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Extras<'a, const D: usize> {
+    /// Free-surface flag, normal and λ.
+    pub surface: Option<&'a FreeSurface<D>>,
+    /// Velocity of the last δ+-SPH shift, δr/Δt.
+    pub shift_velocity: Option<&'a [crate::Vector<D>]>,
+}
+
+/// One snapshot listed in the XDMF index.
+#[derive(Debug, Clone)]
+pub(super) struct Entry {
+    pub file: String,
+    pub time: f64,
+    pub n: usize,
+    /// Whether the file holds the free-surface fields.
+    pub surface: bool,
+    /// Whether the file holds the shifting velocity.
+    pub shift: bool,
+}
+
+impl Entry {
+    pub fn new<const D: usize>(file: String, time: f64, n: usize, extras: &Extras<D>) -> Self {
+        Self {
+            file,
+            time,
+            n,
+            surface: extras.surface.is_some(),
+            shift: extras.shift_velocity.is_some(),
+        }
+    }
+
+    /// The index entry of an existing snapshot file.
+    pub fn read(path: &Path, file: String) -> Result<Self> {
+        let read = || -> hdf5::Result<Entry> {
+            let h5 = hdf5::File::open(path)?;
+            Ok(Entry {
+                time: h5.attr("time")?.read_scalar()?,
+                n: h5.dataset("id")?.size(),
+                surface: h5.dataset("free_surface").is_ok(),
+                shift: h5.dataset("shifting_velocity").is_ok(),
+                file,
+            })
+        };
+        read().map_err(|e| SphError::output(path, format!("unreadable snapshot ({e})")))
+    }
+}
+
+/// Writes one HDF5 snapshot atomically.
+pub fn write_snapshot<const D: usize>(
+    path: &Path,
+    p: &Particles<D>,
+    extras: &Extras<D>,
+    time: f64,
+    step: u64,
+) -> Result<()> {
+    atomic::write(path, |tmp| write_h5(tmp, p, extras, time, step))
+}
+
+/// Writes a lone snapshot `path` (HDF5, as [`write_snapshot`]) and beside it an XDMF
+/// index (`path` with the extension `.xmf`) that ParaView opens, the layout of a run
+/// folder. Existing files are refused unless `overwrite`, and even then only files
+/// deltasph wrote are replaced; returns the index's path.
+pub fn write_indexed_snapshot<const D: usize>(
+    path: &Path,
+    p: &Particles<D>,
+    extras: &Extras<D>,
+    time: f64,
+    step: u64,
+    overwrite: bool,
+) -> Result<PathBuf> {
+    let index = path.with_extension("xmf");
+    if index == path {
+        return Err(SphError::output(
+            path,
+            "a snapshot needs an extension other than .xmf (e.g. .h5)",
+        ));
+    }
+    for file in [path, index.as_path()] {
+        if !file.exists() {
+            continue;
+        }
+        if !overwrite {
+            return Err(SphError::output(
+                file,
+                "file exists; choose another name or pass overwrite=True",
+            ));
+        }
+        if !written_by_deltasph(file) {
+            return Err(SphError::output(
+                file,
+                "file exists and was not written by deltasph; it is never overwritten",
+            ));
+        }
+    }
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| SphError::output(path, "not a file name"))?;
+    write_snapshot(path, p, extras, time, step)?;
+    let entry = Entry::new(name.to_string(), time, p.len(), extras);
+    atomic::write(&index, |tmp| fs::write(tmp, xdmf(&[entry])))?;
+    Ok(index)
+}
+
+/// Whether `path` is an HDF5 or XDMF file that deltasph wrote (its `creator`
+/// attribute, or the first comment of the index).
+pub fn written_by_deltasph(path: &Path) -> bool {
+    if path.extension().is_some_and(|e| e == "xmf") {
+        let head = fs::read(path).unwrap_or_default();
+        let head = String::from_utf8_lossy(&head[..head.len().min(200)]).into_owned();
+        return head.contains(&format!("<!-- {CREATOR_MARK}"));
+    }
+    hdf5::File::open(path)
+        .and_then(|f| f.attr("creator")?.read_scalar::<VarLenUnicode>())
+        .is_ok_and(|c| c.as_str().starts_with(CREATOR_MARK))
+}
+
+/// What every version of deltasph puts first in its `creator` marks.
+const CREATOR_MARK: &str = "deltasph";
+
+/// Positions and velocities padded to three components (what ParaView expects).
+fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Vec<f64> {
+    v.iter()
+        .flat_map(|x| (0..3).map(move |d| if d < D { x[d] } else { 0.0 }))
+        .collect()
+}
+
+fn write_h5<const D: usize>(
+    path: &Path,
+    p: &Particles<D>,
+    extras: &Extras<D>,
+    time: f64,
+    step: u64,
+) -> hdf5::Result<()> {
+    let file = hdf5::File::create(path)?;
+    let n = p.len();
+    let vector = |name: &str, v: &[crate::Vector<D>]| {
+        file.new_dataset::<f64>()
+            .shape((n, 3))
+            .create(name)?
+            .write_raw(&padded(v))
+    };
+    vector("position", &p.x)?;
+    vector("velocity", &p.u)?;
+    write_scalars(&file, p)?;
+    let vertices: Vec<u32> = (0..n as u32).collect();
+    file.new_dataset::<u32>()
+        .shape(n)
+        .create("connectivity")?
+        .write_raw(&vertices)?;
+    if let Some(v) = extras.shift_velocity {
+        vector("shifting_velocity", v)?;
+    }
+    if let Some(s) = extras.surface {
+        let flag: Vec<u8> = s.on_surface.iter().map(|&b| b as u8).collect();
+        file.new_dataset::<u8>()
+            .shape(n)
+            .create("free_surface")?
+            .write_raw(&flag)?;
+        vector("normal", &s.normal)?;
+        file.new_dataset::<f64>()
+            .shape(n)
+            .create("lambda")?
+            .write_raw(&s.lambda)?;
+    }
+    file.new_attr::<f64>().create("time")?.write_scalar(&time)?;
+    file.new_attr::<u64>().create("step")?.write_scalar(&step)?;
+    file.new_attr::<u32>()
+        .create("dimension")?
+        .write_scalar(&(D as u32))?;
+    write_creator(&file)?;
+    file.close()
+}
+
+/// Marks an HDF5 file as deltasph's.
+pub(crate) fn write_creator(file: &hdf5::File) -> hdf5::Result<()> {
+    let creator: VarLenUnicode = CREATOR.parse().expect("the creator text has no NUL");
+    file.new_attr::<VarLenUnicode>()
+        .create("creator")?
+        .write_scalar(&creator)
+}
+
+/// Writes the per-particle `density`, `pressure`, `kind` (0 fluid, 1 wall) and `id`.
+pub(crate) fn write_scalars<const D: usize>(
+    file: &hdf5::File,
+    p: &Particles<D>,
+) -> hdf5::Result<()> {
+    let n = p.len();
+    for (name, v) in [("density", &p.rho), ("pressure", &p.p)] {
+        file.new_dataset::<f64>()
+            .shape(n)
+            .create(name)?
+            .write_raw(v)?;
+    }
+    let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
+    file.new_dataset::<u8>()
+        .shape(n)
+        .create("kind")?
+        .write_raw(&kind)?;
+    file.new_dataset::<u32>()
+        .shape(n)
+        .create("id")?
+        .write_raw(&p.id)?;
+    Ok(())
+}
+
+/// The XDMF 3 index of `entries`: a temporal collection of N-vertex grids.
+pub(super) fn xdmf(entries: &[Entry]) -> String {
+    let mut s = format!(
+        "<?xml version=\"1.0\" ?>\n<!-- {CREATOR}: particle snapshots, one vertex cell per \
+         particle -->\n<Xdmf Version=\"3.0\">\n <Domain>\n  \
+         <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
+    );
+    for e in entries {
+        s += &grid(e);
+    }
+    s + "  </Grid>\n </Domain>\n</Xdmf>\n"
+}
+
+fn grid(e: &Entry) -> String {
+    let item = |name: &str, dims: &str, ty: &str, prec: usize| {
+        format!(
+            "<DataItem Dimensions=\"{dims}\" NumberType=\"{ty}\" Precision=\"{prec}\" \
+             Format=\"HDF\">{}:/{name}</DataItem>",
+            e.file
+        )
+    };
+    let (n, n3) = (e.n.to_string(), format!("{} 3", e.n));
+    let attribute = |name: &str, kind: &str, dims: &str, ty: &str, prec: usize| {
+        format!(
+            "    <Attribute Name=\"{name}\" AttributeType=\"{kind}\" Center=\"Node\">{}</Attribute>\n",
+            item(name, dims, ty, prec)
+        )
+    };
+    let scalar = |name: &str, ty: &str, prec: usize| attribute(name, "Scalar", &n, ty, prec);
+    let vector = |name: &str| attribute(name, "Vector", &n3, "Float", 8);
+    let mut s = format!("   <Grid Name=\"{}\" GridType=\"Uniform\">\n", e.file);
+    s += &format!("    <Time Value=\"{:.9e}\"/>\n", e.time);
+    s += &format!(
+        "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\">{}</Topology>\n",
+        e.n,
+        item("connectivity", &n, "UInt", 4)
+    );
+    s += &format!(
+        "    <Geometry GeometryType=\"XYZ\">{}</Geometry>\n",
+        item("position", &n3, "Float", 8)
+    );
+    s += &vector("velocity");
+    s += &scalar("density", "Float", 8);
+    s += &scalar("pressure", "Float", 8);
+    s += &scalar("kind", "UChar", 1);
+    s += &scalar("id", "UInt", 4);
+    if e.shift {
+        s += &vector("shifting_velocity");
+    }
+    if e.surface {
+        s += &scalar("free_surface", "UChar", 1);
+        s += &scalar("lambda", "Float", 8);
+        s += &vector("normal");
+    }
+    s + "   </Grid>\n"
+}

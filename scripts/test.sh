@@ -4,7 +4,7 @@
 # installs the Python module and runs its pytest suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --test
 cargo test --release --workspace
 bash scripts/install-python.sh
 python3 -m pytest tests/python -q

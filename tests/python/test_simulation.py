@@ -204,7 +204,27 @@ def test_write_snapshot(tmp_path, coarse_dam_break):
     sim.write_snapshot(path, overwrite=True)
     with h5py.File(path) as f:
         assert f.attrs["step"] == 4
+        assert f.attrs["creator"].startswith("deltasph")
     assert not list(tmp_path.glob("*.partial"))
+
+
+def test_write_snapshot_never_overwrites_another_programs_files(tmp_path, coarse_dam_break):
+    """overwrite=True replaces deltasph's own snapshots only: an HDF5 file or an .xmf
+    index of someone else's is kept, byte for byte."""
+    sim = ds.Simulation(coarse_dam_break)
+    theirs = tmp_path / "results.h5"
+    with h5py.File(theirs, "w") as f:
+        f["measured"] = np.arange(5.0)
+    before = theirs.read_bytes()
+    with pytest.raises(OSError, match="not written by deltasph"):
+        sim.write_snapshot(theirs, overwrite=True)
+    assert theirs.read_bytes() == before
+    index = tmp_path / "view.xmf"
+    index.write_text("<Xdmf>my own index</Xdmf>")
+    with pytest.raises(OSError, match="not written by deltasph"):
+        sim.write_snapshot(tmp_path / "view.h5", overwrite=True)
+    assert index.read_text() == "<Xdmf>my own index</Xdmf>"
+    assert not (tmp_path / "view.h5").exists()
 
 
 def test_instability_raises_with_time_step_particle(coarse_dam_break, tmp_path):

@@ -244,3 +244,255 @@ fn a_killed_run_leaves_only_complete_snapshots() {
     let xmf = std::fs::read_to_string(run.join("particles.xmf")).unwrap();
     assert!(xmf.trim_end().ends_with("</Xdmf>"), "the index is whole");
 }
+
+/// The same case with a restart file every 0.1 s of simulated time.
+fn checkpointed_case(dir: &Path, end: f64) -> String {
+    let case = long_case(dir, end);
+    let text = std::fs::read_to_string(&case).unwrap() + "\n[output]\nrestart_interval = 0.1\n";
+    std::fs::write(&case, text).unwrap();
+    case
+}
+
+#[test]
+fn a_run_killed_after_its_second_restart_file_continues_bit_for_bit() {
+    let dir = scratch("sigkill");
+    let case = checkpointed_case(&dir, 0.5);
+    let (whole, parts) = (dir.join("whole"), dir.join("parts"));
+    succeeded(cli(&[
+        "run",
+        &case,
+        "--out",
+        whole.to_str().unwrap(),
+        "--quiet",
+    ]));
+
+    let child = spawn(&["run", &case, "--out", parts.to_str().unwrap(), "--quiet"]);
+    // restart.prev.h5 appears with the second periodic restart file
+    wait_for(&parts.join("restart.prev.h5"));
+    send(&child, "-KILL");
+    let killed = child.wait_with_output().unwrap();
+    assert_eq!(killed.status.code(), None, "killed by the signal");
+    let newest = parts.join("restart.h5");
+    let at = |f: &Path| -> f64 {
+        let h5 = hdf5::File::open(f).unwrap();
+        h5.attr("time").unwrap().read_scalar().unwrap()
+    };
+    let (t_new, t_prev) = (at(&newest), at(&parts.join("restart.prev.h5")));
+    assert!(
+        t_prev >= 0.1 && t_new > t_prev && t_new < 0.5,
+        "{t_prev} {t_new}"
+    );
+
+    // --force replaces what the killed run wrote after its restart file
+    let resumed = cli_within(
+        &[
+            "run",
+            "--restart",
+            newest.to_str().unwrap(),
+            "--quiet",
+            "--force",
+        ],
+        Duration::from_secs(60),
+    );
+    succeeded(resumed);
+    assert_same_state(
+        snapshots(&whole).last().unwrap(),
+        snapshots(&parts).last().unwrap(),
+    );
+    let rows = |d: &Path| std::fs::read_to_string(d.join("timeseries.csv")).unwrap();
+    assert_eq!(
+        rows(&whole),
+        rows(&parts),
+        "the same time series, row for row"
+    );
+}
+
+#[test]
+fn scheduler_signals_stop_a_run_like_sigterm() {
+    for (signal, code) in [("-HUP", 129), ("-USR1", 138)] {
+        let dir = scratch(&format!("signal{code}"));
+        let case = long_case(&dir, 1.0);
+        let run = dir.join("run");
+        let child = spawn(&["run", &case, "--out", run.to_str().unwrap(), "--quiet"]);
+        wait_for(&run.join("particles_000002.h5"));
+        send(&child, signal);
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{signal}: {err}");
+        assert!(err.starts_with("error: interrupted by SIG"), "{err}");
+        assert!(run.join("restart.h5").is_file(), "{signal}");
+        let resumed = cli_within(
+            &[
+                "run",
+                "--restart",
+                run.join("restart.h5").to_str().unwrap(),
+                "--quiet",
+            ],
+            Duration::from_secs(60),
+        );
+        succeeded(resumed);
+    }
+}
+
+#[test]
+fn checkpoint_every_writes_restart_files_while_the_run_goes_on() {
+    let dir = scratch("wallclock");
+    let case = long_case(&dir, 1.0);
+    let run = dir.join("run");
+    let child = spawn(&[
+        "run",
+        &case,
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+        "--checkpoint-every",
+        "50ms",
+    ]);
+    wait_for(&run.join("restart.prev.h5"));
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let bad = cli(&["run", &case, "--checkpoint-every", "soon"]);
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(2), "{err}");
+    assert!(err.contains("expected a duration such as 30min"), "{err}");
+}
+
+#[test]
+fn a_damaged_restart_file_is_an_error_not_a_panic() {
+    let dir = scratch("damaged");
+    let case = long_case(&dir, 0.05);
+    let run = dir.join("run");
+    succeeded(cli(&[
+        "run",
+        &case,
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let original = run.join("restart.h5");
+    for (name, damage) in [
+        ("short", "position"),
+        ("kinds", "kind"),
+        ("budget", "case_toml"),
+    ] {
+        let copy = dir.join(format!("{name}.h5"));
+        std::fs::copy(&original, &copy).unwrap();
+        let h5 = hdf5::File::open_rw(&copy).unwrap();
+        h5.unlink(damage).unwrap();
+        match damage {
+            "position" => {
+                h5.new_dataset::<f64>()
+                    .shape((3, 2))
+                    .create("position")
+                    .unwrap();
+            }
+            "kind" => {
+                let n = h5.dataset("id").unwrap().size();
+                let kinds = vec![7u8; n];
+                h5.new_dataset::<u8>()
+                    .shape(n)
+                    .create("kind")
+                    .unwrap()
+                    .write_raw(&kinds)
+                    .unwrap();
+            }
+            _ => {}
+        }
+        h5.close().unwrap();
+        let out = cli(&[
+            "run",
+            "--restart",
+            copy.to_str().unwrap(),
+            "--out",
+            dir.join(name).to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(err.contains("damaged restart file"), "{name}: {err}");
+    }
+}
+
+/// A disk that fills up during the run (a tmpfs in a private mount namespace, sized
+/// two snapshots short of what the same run writes on the real disk): the write that
+/// does not fit is dropped, the older restart file makes room for a new one, and the
+/// run stops with exit code 2 and a one-line message. Continued from that file
+/// elsewhere, the run ends in the state of the run that had room, bit for bit.
+#[test]
+fn a_full_disk_stops_the_run_after_writing_a_restart_file() {
+    let dir = scratch("full");
+    let case = checkpointed_case(&dir, 0.3);
+    let whole = dir.join("whole");
+    succeeded(cli(&[
+        "run",
+        &case,
+        "--out",
+        whole.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let page = |b: u64| b.div_ceil(4096) * 4096;
+    let files: Vec<(String, u64)> = std::fs::read_dir(&whole)
+        .unwrap()
+        .map(|e| e.unwrap())
+        .map(|e| {
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                e.metadata().unwrap().len(),
+            )
+        })
+        .collect();
+    let snapshot = files
+        .iter()
+        .find(|(f, _)| f == "particles_000001.h5")
+        .unwrap()
+        .1;
+    let capacity = files.iter().map(|(_, b)| page(*b)).sum::<u64>() - 2 * page(snapshot);
+    let (mnt, kept) = (dir.join("disk"), dir.join("kept"));
+    std::fs::create_dir_all(&mnt).unwrap();
+    std::fs::create_dir_all(&kept).unwrap();
+    let script = format!(
+        "mount -t tmpfs -o size={capacity} none {mnt} || exit 90\n\
+         {bin} run {case} --out {mnt}/run --quiet > {kept}/stdout 2> {kept}/stderr\n\
+         echo $? > {kept}/code\n\
+         cp {mnt}/run/restart.h5 {kept}/restart.h5\n\
+         ls {mnt}/run > {kept}/listing\n",
+        mnt = mnt.display(),
+        kept = kept.display(),
+        bin = env!("CARGO_BIN_EXE_sph-cli"),
+    );
+    let status = Command::new("unshare")
+        .args(["--user", "--map-root-user", "--mount", "sh", "-c", &script])
+        .status()
+        .expect("unshare (util-linux) runs");
+    assert!(
+        status.success(),
+        "a private tmpfs could not be mounted: {status}"
+    );
+    let read = |name: &str| std::fs::read_to_string(kept.join(name)).unwrap();
+    let err = read("stderr");
+    assert_eq!(read("code").trim(), "2", "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("No space left on device"), "{err}");
+    assert!(err.contains("restart file written at t = "), "{err}");
+    assert!(
+        !read("listing").contains(".partial"),
+        "no partial file is left"
+    );
+
+    let cont = dir.join("continued");
+    succeeded(cli_within(
+        &[
+            "run",
+            "--restart",
+            kept.join("restart.h5").to_str().unwrap(),
+            "--out",
+            cont.to_str().unwrap(),
+            "--quiet",
+        ],
+        Duration::from_secs(60),
+    ));
+    assert_same_state(
+        snapshots(&whole).last().unwrap(),
+        snapshots(&cont).last().unwrap(),
+    );
+}

@@ -49,10 +49,12 @@ impl SphError {
         }
     }
 
+    /// An output error; the message (an HDF5 or OS error) is folded onto one line.
     pub fn output(path: impl AsRef<std::path::Path>, e: impl ToString) -> Self {
+        let message = e.to_string();
         SphError::Output {
             path: path.as_ref().display().to_string(),
-            message: e.to_string(),
+            message: message.split_whitespace().collect::<Vec<_>>().join(" "),
         }
     }
 }

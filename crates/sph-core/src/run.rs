@@ -204,8 +204,11 @@ impl<const D: usize> Run<D> {
         }
     }
 
+    /// A write failed (its partial file is gone): the older of the two restart files
+    /// makes room for a new one, which is written before the run stops.
     fn output_failed(&mut self, error: SphError, start: Instant) -> Ending {
         self.wall += start.elapsed();
+        self.output.drop_previous_restart();
         Ending::OutputFailed {
             error,
             restart: self.write_restart(),

@@ -211,6 +211,12 @@ impl Output {
         Ok(())
     }
 
+    /// Removes `restart.prev.h5`, to make room for a restart file on a full disk (the
+    /// newer `restart.h5` stays).
+    pub fn drop_previous_restart(&mut self) {
+        let _ = fs::remove_file(self.dir.join(RESTART_PREVIOUS));
+    }
+
     /// Writes a restart file as the folder's newest, `restart.h5`, keeping the one it
     /// replaces as `restart.prev.h5`. At every moment `restart.h5` is a complete file.
     pub fn write_restart<const D: usize>(

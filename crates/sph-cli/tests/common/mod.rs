@@ -1,4 +1,6 @@
 //! Helpers shared by the CLI tests: run the binary, find examples, make scratch folders.
+// Each test crate compiles this module and uses a part of it.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

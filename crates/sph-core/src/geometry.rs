@@ -468,6 +468,124 @@ fn buried_in_wall<const D: usize>(case: &Case, x: &Vector<D>, depth: f64) -> Opt
 mod tests {
     use super::*;
 
+    const TANK: &str = r#"
+        dimension = 2
+        [particles]
+        spacing = 0.05
+        [fluid]
+        density = 1000.0
+        gravity = [0.0, -9.81]
+        [[fluid_block]]
+        lo = [0.0, 0.0]
+        hi = [1.2, 0.6]
+        [[tank]]
+        lo = [0.0, 0.0]
+        hi = [3.2196, 1.8]
+        [time]
+        end = 0.1
+    "#;
+
+    fn build_error(text: &str) -> String {
+        let case = Case::from_toml_str(text).unwrap();
+        match build::<2>(&case) {
+            Ok(_) => panic!("built: {text}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn probes_no_fluid_can_reach_are_refused() {
+        let with_probe =
+            |p: &str| format!("{TANK}\n[diagnostics]\nprobes = [[3.2196, 0.16], {p}]\n");
+        let e = build_error(&with_probe("[5.0, 5.0]"));
+        assert!(
+            e.starts_with("diagnostics.probes[1] = [5.0, 5.0]: expected a point inside the domain"),
+            "{e}"
+        );
+        // in the bottom wall, deeper than the kernel support R = 0.133 m: 3 layers of 0.05 m
+        let e = build_error(&with_probe("[1.0, -0.14]"));
+        assert!(
+            e.contains("not deeper than the kernel support inside tank[0]"),
+            "{e}"
+        );
+        // on the wall's face (the P1 probe), in the fluid, and over the open top: fine
+        let case = Case::from_toml_str(&with_probe("[1.0, 2.0]")).unwrap();
+        assert!(build::<2>(&case).is_ok());
+    }
+
+    #[test]
+    fn initial_fields_must_fit_the_fluid_they_fill() {
+        let drop = |radius: f64| {
+            format!(
+                "dimension = 2\n[particles]\nspacing = 0.04\n[fluid]\ndensity = 1000.0\n\
+                 sound_speed = 1400.0\n[[fluid_block]]\nlo = [-1.0, -1.0]\nhi = [1.0, 1.0]\n\
+                 shape = \"ellipsoid\"\n[initial]\ntype = \"elliptic_drop\"\nstrain_rate = 100.0\n\
+                 radius = {radius:?}\n[time]\nend = 0.01\n"
+            )
+        };
+        assert!(build::<2>(&Case::from_toml_str(&drop(1.0)).unwrap()).is_ok());
+        let e = build_error(&drop(0.5));
+        assert!(
+            e.starts_with("initial.radius = 0.5: expected the radius of the fluid the field fills"),
+            "{e}"
+        );
+        let square =
+            TANK.replace(
+                "lo = [0.0, 0.0]\n        hi = [1.2, 0.6]",
+                "lo = [-0.5, -0.5]\n        hi = [0.5, 0.5]",
+            )
+            .replace("gravity = [0.0, -9.81]", "sound_speed = 10.0")
+            .replace(
+                "[[tank]]\n        lo = [0.0, 0.0]\n        hi = [3.2196, 1.8]",
+                "",
+            ) + "[initial]\ntype = \"rotating_square\"\nangular_velocity = 1.0\nside = 2.0\n";
+        let e = build_error(&square);
+        assert!(
+            e.starts_with("initial.side = 2: expected the side of the fluid"),
+            "{e}"
+        );
+        assert!(build::<2>(
+            &Case::from_toml_str(&square.replace("side = 2.0", "side = 1.0")).unwrap()
+        )
+        .is_ok());
+    }
+
+    #[test]
+    fn the_taylor_green_field_must_be_periodic_with_the_domain() {
+        let tg = |wavelength: f64| {
+            format!(
+                "dimension = 2\n[particles]\nspacing = 0.05\n[fluid]\ndensity = 1.0\nsound_speed = 10.0\n\
+                 [[fluid_block]]\nlo = [0.0, 0.0]\nhi = [1.0, 1.0]\nhydrostatic = false\n\
+                 [domain]\nlo = [0.0, 0.0]\nhi = [1.0, 1.0]\nperiodic = [true, true]\n\
+                 [initial]\ntype = \"taylor_green\"\namplitude = 1.0\nwavelength = {wavelength:?}\n\
+                 [time]\nend = 0.1\n"
+            )
+        };
+        assert!(build::<2>(&Case::from_toml_str(&tg(0.5)).unwrap()).is_ok());
+        let e = build_error(&tg(0.3));
+        assert!(
+            e.starts_with("initial.wavelength = 0.3: expected a wavelength that divides"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_default_domain_widens_the_initial_box_by_half() {
+        let case = Case::from_toml_str(TANK).unwrap();
+        let setup = build::<2>(&case).unwrap();
+        let (lo, hi) = (setup.domain.lo, setup.domain.hi);
+        // wall particles span x from -0.125 to 3.325 (70 lattice points from -0.15) and
+        // y from -0.125 to 1.775 (the top is open): half of 3.45 and of 1.9 on each side
+        for (got, want) in [
+            (lo[0], -1.85),
+            (lo[1], -1.075),
+            (hi[0], 5.05),
+            (hi[1], 2.725),
+        ] {
+            assert!((got - want).abs() < 1e-9, "{lo:?} {hi:?}");
+        }
+    }
+
     /// The centre value quoted in `../shared/refdata/README.md` §5, -0.147343 ρ0 ω² L²,
     /// and p = 0 on the edges.
     #[test]

@@ -208,3 +208,175 @@ fn tensile_control_stops_the_tensile_instability() {
     );
     assert!(controlled.1 < 1.5 * controlled.0, "{controlled:?}");
 }
+
+/// A block of fluid on a lattice (lo = 0, side `n` Δx), optionally periodic (no free
+/// surface), each particle displaced at random by up to `jitter` Δx; with its lists,
+/// kernel and free surface.
+struct Layout {
+    particles: sph_core::Particles<2>,
+    list: sph_core::neighbours::NeighbourList<2>,
+    domain: sph_core::domain::Domain<2>,
+    kernel: sph_core::kernel::WendlandC2,
+    surface: sph_core::free_surface::FreeSurface<2>,
+}
+
+const DX: f64 = 0.05;
+
+fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
+    use rand::{rngs::SmallRng, Rng, SeedableRng};
+    use sph_core::kernel::Kernel;
+    let side = n as f64 * DX;
+    let domain_lines = if periodic {
+        format!("[domain]\nlo = [0.0, 0.0]\nhi = [{side}, {side}]\nperiodic = [true, true]\n")
+    } else {
+        String::new()
+    };
+    let case = sph_core::Case::from_toml_str(&format!(
+        "dimension = 2\n[particles]\nspacing = {DX}\n[fluid]\ndensity = 1000.0\n\
+         sound_speed = 10.0\n[[fluid_block]]\nlo = [0.0, 0.0]\nhi = [{side}, {side}]\n\
+         hydrostatic = false\n{domain_lines}[time]\nend = 1.0\n"
+    ))
+    .unwrap();
+    let sim = Simulation::<2>::new(case).unwrap();
+    let mut particles = sim.particles.clone();
+    let mut rng = SmallRng::seed_from_u64(5);
+    for x in particles.x.iter_mut() {
+        *x += Vector::<2>::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0))
+            * (jitter * DX);
+        sim.domain.wrap(x);
+    }
+    let kernel = sph_core::kernel::WendlandC2::new(1.33 * DX, 2);
+    let domain = sim.domain;
+    let (list, _) =
+        sph_core::neighbours::NeighbourList::build(&mut particles, &domain, kernel.radius(), 0.0);
+    let surface = sph_core::free_surface::detect(&kernel, &particles, &list, &domain);
+    Layout {
+        particles,
+        list,
+        domain,
+        kernel,
+        surface,
+    }
+}
+
+fn displacements(l: &Layout, cfl_ma: f64) -> Vec<Vector<2>> {
+    sph_core::shifting::displacements(
+        &l.kernel,
+        DX,
+        &l.particles,
+        &l.list,
+        &l.domain,
+        &l.surface,
+        cfl_ma,
+    )
+}
+
+/// The δ+-SPH displacement of Sun et al. (2017), computed here from its formula with
+/// the Wendland C2 kernel written out: δr_i = -CFL·Ma (2h)² Σ_j [1 + 0.2 (W_ij/W(Δx))⁴]
+/// ∇_i W_ij V_j, over a disordered periodic lattice (no surface, no cap reached).
+#[test]
+fn shifting_magnitude_follows_sun_et_al() {
+    let l = layout(16, true, 0.2);
+    let cfl_ma = 0.01;
+    let dr = displacements(&l, cfl_ma);
+    let h = 1.33 * DX;
+    let alpha = 7.0 / (4.0 * std::f64::consts::PI * h * h);
+    let w = |r: f64| {
+        let q = r / h;
+        alpha * (1.0 - 0.5 * q).max(0.0).powi(4) * (2.0 * q + 1.0)
+    };
+    let dw = |r: f64| {
+        let q = r / h;
+        -5.0 * alpha * q * (1.0 - 0.5 * q).max(0.0).powi(3) / h
+    };
+    let p = &l.particles;
+    let (mut worst, mut largest) = (0.0f64, 0.0f64);
+    for i in 0..p.len() {
+        let mut sum = Vector::<2>::zeros();
+        for j in (0..p.len()).filter(|&j| j != i) {
+            let x_ij = l.domain.separation(&p.x[i], &p.x[j]);
+            let r = x_ij.norm();
+            if r < 2.0 * h {
+                let weight = 1.0 + 0.2 * (w(r) / w(DX)).powi(4);
+                sum += x_ij / r * dw(r) * (p.mass[j] / p.rho[j]) * weight;
+            }
+        }
+        let expected = -sum * cfl_ma * (2.0 * h).powi(2);
+        worst = worst.max((dr[i] - expected).norm());
+        largest = largest.max(expected.norm());
+    }
+    println!(
+        "largest displacement {:.3e} h, worst difference {worst:.3e} m",
+        largest / h
+    );
+    assert!(
+        largest > 1e-3 * h && largest < 0.05 * h,
+        "a meaningful, uncapped test"
+    );
+    assert!(
+        worst < 1e-12 * largest,
+        "worst difference {worst:e} of {largest:e}"
+    );
+}
+
+/// However strong the shift, no particle moves by more than 0.05 h, and the
+/// strongest reach exactly the cap.
+#[test]
+fn shifting_is_capped_at_a_twentieth_of_h() {
+    let l = layout(16, true, 0.2);
+    let h = 1.33 * DX;
+    let dr = displacements(&l, 10.0);
+    let longest = dr.iter().map(|d| d.norm()).fold(0.0, f64::max);
+    let capped = dr
+        .iter()
+        .filter(|d| (d.norm() - 0.05 * h).abs() < 1e-12 * h)
+        .count();
+    assert!(longest <= 0.05 * h * (1.0 + 1e-12), "{longest:e}");
+    assert!(capped > dr.len() / 2, "{capped} of {} at the cap", dr.len());
+}
+
+/// Near the free surface only the tangential part is kept (the surface does not move
+/// along its normal), and splash particles (λ < 0.4) are not shifted at all.
+#[test]
+fn shifting_is_tangential_at_the_surface_and_leaves_splashes_alone() {
+    let mut l = layout(12, false, 0.2);
+    // one particle thrown far from the block: λ = 0
+    let far = l.particles.len() - 1;
+    l.particles.x[far] = Vector::<2>::new(3.0, 3.0);
+    let (list, _) = sph_core::neighbours::NeighbourList::build(
+        &mut l.particles,
+        &l.domain,
+        2.0 * 1.33 * DX,
+        0.0,
+    );
+    l.list = list;
+    l.surface = sph_core::free_surface::detect(&l.kernel, &l.particles, &l.list, &l.domain);
+    let dr = displacements(&l, 0.01);
+    let s = &l.surface;
+    let (mut near, mut worst_normal, mut longest_near) = (0, 0.0f64, 0.0f64);
+    for i in 0..dr.len() {
+        if s.lambda[i] < 0.4 {
+            assert_eq!(
+                dr[i],
+                Vector::<2>::zeros(),
+                "splash at {:?}",
+                l.particles.x[i]
+            );
+        } else if s.near[i] {
+            near += 1;
+            worst_normal = worst_normal.max(dr[i].dot(&s.normal[i]).abs());
+            longest_near = longest_near.max(dr[i].norm());
+        }
+    }
+    let isolated = (0..dr.len()).filter(|&i| s.lambda[i] < 0.4).count();
+    println!("{near} near the surface: normal part {worst_normal:.2e}, longest {longest_near:.2e} m; {isolated} splashes");
+    assert!(isolated >= 1 && near > 40);
+    assert!(
+        longest_near > 0.0,
+        "near-surface particles are shifted along the surface"
+    );
+    assert!(
+        worst_normal < 1e-12 * longest_near.max(1e-30),
+        "{worst_normal:e}"
+    );
+}

@@ -10,9 +10,8 @@ fn worst_crossings(overrides: &[&str]) -> usize {
     let end = 7.0 * (0.6f64 / 9.81).sqrt();
     let mut worst = 0;
     while sim.time < end * (1.0 - 1e-12) {
-        if sim.step().is_err() {
-            break;
-        }
+        sim.step()
+            .unwrap_or_else(|e| panic!("dam break with {overrides:?}: {e}"));
         worst = worst.max(sim.wall_crossings());
     }
     worst

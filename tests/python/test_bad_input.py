@@ -131,3 +131,10 @@ def test_probe_and_run_checks(sim):
         sim.run(until=0.0, progress=3)
     with pytest.raises(OverflowError):
         sim.step(-1)
+
+
+def test_step_count_that_would_overflow_is_refused(sim):
+    sim.step(2)
+    with pytest.raises(ValueError, match=r"n = 18446744073709551615: expected a step count below"):
+        sim.step(2**64 - 1)
+    assert sim.n_steps == 2

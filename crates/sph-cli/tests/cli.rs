@@ -313,3 +313,34 @@ fn fluid_that_leaves_an_open_tank_is_removed_and_counted() {
         "the index follows the particle count"
     );
 }
+
+/// `check` refuses what cannot be meant, in one line naming the key: a probe far
+/// outside the tank, wall layers thinner than the kernel support.
+#[test]
+fn check_refuses_unreachable_probes_and_thin_walls() {
+    let dir = scratch("check_refuses");
+    for (edit, expected) in [
+        (
+            (
+                "probes = [[3.2196, 0.16]]",
+                "probes = [[3.2196, 0.16], [5.0, 5.0]]",
+            ),
+            "error: diagnostics.probes[1] = [5.0, 5.0]: expected a point inside the domain",
+        ),
+        (
+            ("h_over_dx = 1.33", "h_over_dx = 2.0"),
+            "error: tank[0].layers = 3: expected at least 4 layers",
+        ),
+    ] {
+        let case = small_case(&dir, "");
+        let text = std::fs::read_to_string(&case)
+            .unwrap()
+            .replace(edit.0, edit.1);
+        std::fs::write(&case, text).unwrap();
+        let out = cli(&["check", &case]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with(expected), "{err}");
+    }
+}

@@ -126,10 +126,10 @@ mod tests {
         density_gradient(&kernel, &p, &list, &domain, &mut grad);
         let size = n as f64 * dx;
         let (mut inside, mut cut) = (0.0f64, 0.0f64);
-        for i in 0..p.len() {
-            let err = (grad[i] - a).norm() / a.norm();
+        for (x, g) in p.x.iter().zip(&grad) {
+            let err = (g - a).norm() / a.norm();
             let to_face = (0..D)
-                .map(|d| p.x[i][d].min(size - p.x[i][d]))
+                .map(|d| x[d].min(size - x[d]))
                 .fold(f64::INFINITY, f64::min);
             if to_face < kernel.radius() {
                 cut = cut.max(err);

@@ -291,7 +291,7 @@ fn shifting_magnitude_follows_sun_et_al() {
     };
     let p = &l.particles;
     let (mut worst, mut largest) = (0.0f64, 0.0f64);
-    for i in 0..p.len() {
+    for (i, dr_i) in dr.iter().enumerate() {
         let mut sum = Vector::<2>::zeros();
         for j in (0..p.len()).filter(|&j| j != i) {
             let x_ij = l.domain.separation(&p.x[i], &p.x[j]);
@@ -302,7 +302,7 @@ fn shifting_magnitude_follows_sun_et_al() {
             }
         }
         let expected = -sum * cfl_ma * (2.0 * h).powi(2);
-        worst = worst.max((dr[i] - expected).norm());
+        worst = worst.max((dr_i - expected).norm());
         largest = largest.max(expected.norm());
     }
     println!(

@@ -354,18 +354,13 @@ fn shifting_is_tangential_at_the_surface_and_leaves_splashes_alone() {
     let dr = displacements(&l, 0.01);
     let s = &l.surface;
     let (mut near, mut worst_normal, mut longest_near) = (0, 0.0f64, 0.0f64);
-    for i in 0..dr.len() {
+    for (i, d) in dr.iter().enumerate() {
         if s.lambda[i] < 0.4 {
-            assert_eq!(
-                dr[i],
-                Vector::<2>::zeros(),
-                "splash at {:?}",
-                l.particles.x[i]
-            );
+            assert_eq!(*d, Vector::<2>::zeros(), "splash at {:?}", l.particles.x[i]);
         } else if s.near[i] {
             near += 1;
-            worst_normal = worst_normal.max(dr[i].dot(&s.normal[i]).abs());
-            longest_near = longest_near.max(dr[i].norm());
+            worst_normal = worst_normal.max(d.dot(&s.normal[i]).abs());
+            longest_near = longest_near.max(d.norm());
         }
     }
     let isolated = (0..dr.len()).filter(|&i| s.lambda[i] < 0.4).count();

@@ -180,6 +180,7 @@ def elliptic_drop(sim):
     return {
         "error": abs(b / exact[2] - 1.0),
         "a_error": abs(a / exact[1] - 1.0),
+        "area_error": abs(a * b - 1.0),
         "kinetic_energy_change": abs(sim.energies()["kinetic"] / e0 - 1.0),
     }
 
@@ -295,7 +296,7 @@ CASES = [
           "full": [(d, i) for d in ("δ-SPH", "δ+-SPH") for i in INTEGRATORS]}),
     Case("elliptic_drop", "Elliptic drop (A0 t = 0.75)", "elliptic_drop.toml",
          {"quick": [12.5, 25, 50], "full": [12.5, 25, 50, 100]}, 1.0,
-         "|b/b_exact − 1|", elliptic_drop, ALL),
+         "|b/b_exact − 1|", elliptic_drop, SHIFTED),
     Case("taylor_green_re100", "Taylor-Green vortex, Re = 100 (t = 1)", "taylor_green.toml",
          {"quick": [25, 50, 75], "full": [25, 50, 75, 100]}, 1.0,
          "L2 velocity error / U e^{bt}", lambda s: taylor_green(s, 0.01), SHIFTED),

@@ -5,8 +5,8 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use deltasph_suite::example_case;
 use sph_core::domain::Domain;
-use sph_core::kernel::{Kernel, QuinticSpline, WendlandC2};
 use sph_core::neighbours::NeighbourList;
+use sph_core::physics::kernel::{Kernel, QuinticSpline, WendlandC2};
 use sph_core::Simulation;
 use std::hint::black_box;
 
@@ -50,7 +50,7 @@ fn neighbours(c: &mut Criterion) {
             &[&format!("particles.spacing = {dx}")],
         ))
         .unwrap();
-        let particles = sim.particles.clone();
+        let particles = sim.particles().clone();
         g.throughput(Throughput::Elements(particles.len() as u64));
         g.bench_with_input(BenchmarkId::from_parameter(n as u64), &particles, |b, p| {
             b.iter(|| {

@@ -39,17 +39,19 @@ fn patch(periodic: bool, noise: bool, scheme: &str) -> Simulation<2> {
     // (Mach 0.05) and a density perturbation, so that every term is exercised.
     let mut rng = SmallRng::seed_from_u64(42);
     let amplitude = if noise { 1.0 } else { 0.0 };
-    for i in 0..sim.particles.len() {
-        let x = sim.particles.x[i] - Vector2::new(0.5, 0.5);
-        let n = Vector2::new(rng.random::<f64>() - 0.5, rng.random::<f64>() - 0.5);
-        sim.particles.u[i] = Vector2::new(-x[1], x[0]) + n * amplitude;
-        sim.particles.rho[i] *= 1.0 + 0.002 * amplitude * (rng.random::<f64>() - 0.5);
-    }
+    sim.edit(|p| {
+        for i in 0..p.len() {
+            let x = p.x[i] - Vector2::new(0.5, 0.5);
+            let n = Vector2::new(rng.random::<f64>() - 0.5, rng.random::<f64>() - 0.5);
+            p.u[i] = Vector2::new(-x[1], x[0]) + n * amplitude;
+            p.rho[i] *= 1.0 + 0.002 * amplitude * (rng.random::<f64>() - 0.5);
+        }
+    });
     sim
 }
 
 fn momentum(sim: &Simulation<2>) -> (Vector2<f64>, f64, f64) {
-    let p = &sim.particles;
+    let p = sim.particles();
     let (mut lin, mut ang, mut scale) = (Vector2::zeros(), 0.0, 0.0);
     for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid) {
         let m = p.mass[i];
@@ -65,9 +67,9 @@ fn mass_is_exact_and_diffusion_moves_no_mass() {
     for diffusion in ["molteni_colagrossi", "ferrari", "delta_sph"] {
         let mut sim = patch(false, true, &format!("diffusion = \"{diffusion}\""));
         let by_id = |s: &Simulation<2>| {
-            let mut m = vec![f64::NAN; s.particles.len()];
-            for (k, &id) in s.particles.id.iter().enumerate() {
-                m[id as usize] = s.particles.mass[k];
+            let mut m = vec![f64::NAN; s.particles().len()];
+            for (k, &id) in s.particles().id.iter().enumerate() {
+                m[id as usize] = s.particles().mass[k];
             }
             m
         };
@@ -80,7 +82,7 @@ fn mass_is_exact_and_diffusion_moves_no_mass() {
         assert_eq!(by_id(&sim), m0);
         // Σ V_i D_i = 0 because ψ is pair-symmetric (SCHEME.md §5).
         let rates = sim.rates();
-        let p = &sim.particles;
+        let p = sim.particles();
         let (mut sum, mut scale) = (0.0, 0.0);
         for i in 0..p.len() {
             let v = p.mass[i] / p.rho[i];
@@ -121,7 +123,7 @@ fn angular_momentum_is_conserved_by_the_pair_terms() {
     // Free patch (angular momentum is not an invariant of a periodic box).
     let mut sim = patch(false, true, "alpha = 0.05");
     let rates = sim.rates();
-    let p = &sim.particles;
+    let p = sim.particles();
     let (mut torque, mut scale) = (0.0, 0.0);
     for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid) {
         let (x, a) = (p.x[i], rates.du[i]);
@@ -157,7 +159,7 @@ fn energy_is_conserved_without_viscosity_and_diffusion() {
     let drift = ((e1 - e0) / e0).abs();
     println!(
         "RK4, K = 0, δ = 0: E {e0:.6e} → {e1:.6e}, relative drift {drift:.2e} at t = {:.3} s",
-        sim.time
+        sim.time()
     );
     assert!(drift < 1e-4, "relative energy drift {drift:e}");
 }
@@ -182,10 +184,10 @@ fn energy_budget_closes_with_viscosity_and_diffusion() {
     );
     let mut sim = Simulation::<2>::new(Case::from_table(table).unwrap()).unwrap();
     let e0 = sim.energies().total();
-    while sim.time < 0.5 {
+    while sim.time() < 0.5 {
         sim.step().unwrap();
     }
-    let budget = sim.budget.unwrap();
+    let budget = sim.budget().unwrap();
     let e1 = sim.energies().total();
     let lost = e0 - e1;
     let residual = (e1 - budget.dissipated - e0).abs();
@@ -229,9 +231,9 @@ fn viscous_power_is_never_positive_and_open_budgets_say_why() {
         sim.budget_caveats()
     );
     let (mut steps, mut negative, mut most) = (0, 0, f64::MIN);
-    while sim.time < 0.6 * (1.0 - 1e-12) {
+    while sim.time() < 0.6 * (1.0 - 1e-12) {
         sim.step().unwrap();
-        let p_v = sim.budget.unwrap().last.viscous;
+        let p_v = sim.budget().unwrap().last.viscous;
         most = most.max(p_v);
         steps += 1;
         negative += (p_v < 0.0) as usize;

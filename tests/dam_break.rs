@@ -26,9 +26,9 @@ fn martin_moyce_surge_front_within_experimental_scatter() {
     let mut sim = Simulation::<2>::new(case).unwrap();
     let scale = (2.0 * g / a).sqrt();
     let mut front = vec![(0.0, 1.0)];
-    while sim.time * scale < 3.0 {
+    while sim.time() * scale < 3.0 {
         sim.step().unwrap();
-        front.push((sim.time * scale, sim.surge_front(0) / a));
+        front.push((sim.time() * scale, sim.surge_front(0) / a));
     }
     // Three experimental series: MM a = 1.125 in, MM a = 2.25 in, KO.
     let (_, mm) = read_csv(&refdata("dambreak2d_martin_moyce_1952_surge_front.csv"));
@@ -94,9 +94,9 @@ fn benchmark_front_reaches_the_wall_when_p1_rises() {
     let wall = 5.366 * h;
     let p1 = nalgebra::Vector2::new(wall, 0.16);
     let (mut arrival, mut rise) = (None, None);
-    while sim.time * scale < 3.0 && rise.is_none() {
+    while sim.time() * scale < 3.0 && rise.is_none() {
         sim.step().unwrap();
-        let t = sim.time * scale;
+        let t = sim.time() * scale;
         if arrival.is_none() && sim.surge_front(0) > wall - 0.024 {
             arrival = Some(t);
         }

@@ -57,7 +57,7 @@ fn check<const D: usize>(case: Case, hi: Vector<D>, walls: bool) {
     let dx = case.dx();
     let sim = Simulation::<D>::new(case).unwrap();
     let fs = sim.free_surface();
-    let p = &sim.particles;
+    let p = sim.particles();
     let (mut outer, mut flagged_outer, mut deep_flagged, mut worst_angle) = (0, 0, 0, 0.0f64);
     for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid) {
         let (dist, n) = nearest_free_face(&p.x[i], &hi, walls);
@@ -130,7 +130,7 @@ fn check_round<const D: usize>(n: usize) {
     let dx = case.dx();
     let sim = Simulation::<D>::new(case).unwrap();
     let fs = sim.free_surface();
-    let p = &sim.particles;
+    let p = sim.particles();
     let r_out = (0..p.len()).map(|i| p.x[i].norm()).fold(0.0, f64::max);
     let (mut rim, mut rim_flagged, mut deep_flagged, mut worst) = (0, 0, 0, 0.0f64);
     for i in 0..p.len() {

@@ -25,11 +25,11 @@ fn run(diffusion: &str, dx: f64) -> Errors {
     );
     let (rho0, g, depth) = (1000.0, 9.81, 1.0);
     let mut sim = Simulation::<2>::new(case).unwrap();
-    while sim.time < 6.39 * (1.0 - 1e-12) {
+    while sim.time() < 6.39 * (1.0 - 1e-12) {
         sim.step().unwrap();
     }
     sim.sync_pressure();
-    let p = &sim.particles;
+    let p = sim.particles();
     let (mut all, mut n_all, mut top, mut n_top, mut umax) = (0.0, 0, 0.0, 0, 0.0f64);
     for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid) {
         let y = p.x[i][1];
@@ -92,11 +92,11 @@ fn wall_pressure_is_hydrostatic_at_the_wall_particles_depth() {
     let mut sim = Simulation::<2>::new(case).unwrap();
     let mut worst = Vec::new();
     for t in [0.0, 3.19] {
-        while sim.time < t * (1.0 - 1e-12) {
+        while sim.time() < t * (1.0 - 1e-12) {
             sim.step().unwrap();
         }
         sim.sync_pressure();
-        let p = &sim.particles;
+        let p = sim.particles();
         let reach = 2.0 * 1.33 * 0.05;
         let (mut relative, mut of_scale, mut checked) = (0.0f64, 0.0f64, 0);
         for w in (0..p.len()).filter(|&i| p.kind[i] == Kind::Wall) {

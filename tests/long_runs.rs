@@ -19,7 +19,7 @@ fn hydrostatic_tank_holds_to_t_star_200() {
     );
     let mut sim = Simulation::<2>::new(case).unwrap();
     let top = |s: &Simulation<2>| -> f64 {
-        let p = &s.particles;
+        let p = s.particles();
         let ys: Vec<f64> = (0..p.len())
             .filter(|&i| p.kind[i] == Kind::Fluid)
             .map(|i| p.x[i][1])
@@ -31,12 +31,12 @@ fn hydrostatic_tank_holds_to_t_star_200() {
     let top0 = top(&sim);
     let (mut worst_speed, mut worst_error) = (0.0f64, 0.0f64);
     let mut next_check = 10.0;
-    while sim.time < end * (1.0 - 1e-12) {
+    while sim.time() < end * (1.0 - 1e-12) {
         sim.step().unwrap();
-        if sim.time * (g / depth).sqrt() >= next_check {
+        if sim.time() * (g / depth).sqrt() >= next_check {
             next_check += 10.0;
             sim.sync_pressure();
-            let p = &sim.particles;
+            let p = sim.particles();
             let fluid: Vec<usize> = (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid).collect();
             let err = fluid
                 .iter()
@@ -44,7 +44,7 @@ fn hydrostatic_tank_holds_to_t_star_200() {
                 .sum::<f64>()
                 / fluid.len() as f64;
             worst_error = worst_error.max(err.sqrt());
-            if sim.time * (g / depth).sqrt() > 20.0 {
+            if sim.time() * (g / depth).sqrt() > 20.0 {
                 let speed = fluid.iter().map(|&i| p.u[i].norm()).fold(0.0, f64::max);
                 worst_speed = worst_speed.max(speed);
             }
@@ -94,17 +94,17 @@ fn dam_break_without_viscosity_to_t_star_20_closes_its_energy_balance() {
     let mut sim = Simulation::<2>::new(case).unwrap();
     let e0 = sim.energies().total();
     let (mut worst_residual, mut worst_growth) = (0.0f64, f64::MIN);
-    while sim.time < end * (1.0 - 1e-12) {
+    while sim.time() < end * (1.0 - 1e-12) {
         sim.step().unwrap_or_else(|e| panic!("{e}"));
         let e = sim.energies().total();
-        let dissipated = -sim.budget.unwrap().dissipated;
+        let dissipated = -sim.budget().unwrap().dissipated;
         worst_residual = worst_residual.max((e + dissipated - e0).abs() / available);
         worst_growth = worst_growth.max((e - e0) / available);
     }
     let lost = (e0 - sim.energies().total()) / available;
     println!(
         "t* = 20 in {} steps: lost {:.1}% of ΔE_p,∞, worst budget residual {:.3}%, worst growth {:+.3}%",
-        sim.counters.steps,
+        sim.counters().steps,
         100.0 * lost,
         100.0 * worst_residual,
         100.0 * worst_growth

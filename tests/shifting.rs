@@ -4,14 +4,14 @@ use deltasph_suite::example_case;
 use sph_core::{Kind, Simulation, Vector};
 
 fn run_to(sim: &mut Simulation<2>, t: f64) {
-    while sim.time < t * (1.0 - 1e-12) {
+    while sim.time() < t * (1.0 - 1e-12) {
         sim.step_until(t).unwrap();
     }
 }
 
 /// Spread of the nearest-neighbour distance over the fluid, std/mean (0 on a lattice).
 fn disorder(sim: &Simulation<2>) -> f64 {
-    let p = &sim.particles;
+    let p = sim.particles();
     let fluid: Vec<usize> = (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid).collect();
     let nearest: Vec<f64> = fluid
         .iter()
@@ -33,7 +33,7 @@ fn disorder(sim: &Simulation<2>) -> f64 {
 fn pressure_noise(sim: &mut Simulation<2>) -> f64 {
     sim.sync_pressure();
     let surface = sim.free_surface();
-    let p = &sim.particles;
+    let p = sim.particles();
     let bulk: Vec<usize> = (0..p.len()).filter(|&i| surface.lambda[i] > 0.75).collect();
     let sum: f64 = bulk
         .iter()
@@ -74,7 +74,7 @@ fn rotating_square_patch_stays_regular_with_shifting() {
 }
 
 fn angular_momentum(sim: &Simulation<2>) -> f64 {
-    let p = &sim.particles;
+    let p = sim.particles();
     (0..p.len())
         .filter(|&i| p.kind[i] == Kind::Fluid)
         .map(|i| p.mass[i] * (p.x[i][0] * p.u[i][1] - p.x[i][1] * p.u[i][0]))
@@ -94,14 +94,14 @@ fn shifting_keeps_the_hydrostatic_tank() {
     );
     let mut sim = Simulation::<2>::new(case).unwrap();
     let volume = |s: &Simulation<2>| -> f64 {
-        let p = &s.particles;
+        let p = s.particles();
         (0..p.len())
             .filter(|&i| p.kind[i] == Kind::Fluid)
             .map(|i| p.volume(i))
             .sum()
     };
     let top = |s: &Simulation<2>| -> f64 {
-        let p = &s.particles;
+        let p = s.particles();
         (0..p.len())
             .filter(|&i| p.kind[i] == Kind::Fluid)
             .map(|i| p.x[i][1])
@@ -109,7 +109,7 @@ fn shifting_keeps_the_hydrostatic_tank() {
     };
     let (v0, top0) = (volume(&sim), top(&sim));
     run_to(&mut sim, 3.0);
-    let p = &sim.particles;
+    let p = sim.particles();
     let outside = (0..p.len())
         .filter(|&i| p.kind[i] == Kind::Fluid)
         .filter(|&i| {
@@ -139,7 +139,7 @@ fn taylor_green_errors(shifting: &str) -> (f64, f64) {
     run_to(&mut sim, 1.0);
     let k = 2.0 * std::f64::consts::PI;
     let decay = (-2.0 * k * k * 0.001_f64).exp();
-    let p = &sim.particles;
+    let p = sim.particles();
     let sum: f64 = (0..p.len())
         .map(|i| {
             let (x, y) = (p.x[i][0], p.x[i][1]);
@@ -185,12 +185,13 @@ fn tension_box(tic: bool) -> (f64, f64) {
     .unwrap();
     let mut sim = Simulation::<2>::new(case).unwrap();
     let mut rng = SmallRng::seed_from_u64(7);
-    for x in sim.particles.x.iter_mut() {
-        *x += Vector::<2>::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0))
-            * (0.05 * 0.05);
-    }
-    sim.particles.rho.iter_mut().for_each(|r| *r = 990.0);
-    sim.state_changed();
+    sim.edit(|p| {
+        for x in p.x.iter_mut() {
+            *x += Vector::<2>::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0))
+                * (0.05 * 0.05);
+        }
+        p.rho.iter_mut().for_each(|r| *r = 990.0);
+    });
     let d0 = disorder(&sim);
     run_to(&mut sim, 0.5);
     (d0, disorder(&sim))
@@ -216,15 +217,15 @@ struct Layout {
     particles: sph_core::Particles<2>,
     list: sph_core::neighbours::NeighbourList<2>,
     domain: sph_core::domain::Domain<2>,
-    kernel: sph_core::kernel::WendlandC2,
-    surface: sph_core::free_surface::FreeSurface<2>,
+    kernel: sph_core::physics::kernel::WendlandC2,
+    surface: sph_core::physics::free_surface::FreeSurface<2>,
 }
 
 const DX: f64 = 0.05;
 
 fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
     use rand::{rngs::SmallRng, Rng, SeedableRng};
-    use sph_core::kernel::Kernel;
+    use sph_core::physics::kernel::Kernel;
     let side = n as f64 * DX;
     let domain_lines = if periodic {
         format!("[domain]\nlo = [0.0, 0.0]\nhi = [{side}, {side}]\nperiodic = [true, true]\n")
@@ -238,18 +239,18 @@ fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
     ))
     .unwrap();
     let sim = Simulation::<2>::new(case).unwrap();
-    let mut particles = sim.particles.clone();
+    let mut particles = sim.particles().clone();
     let mut rng = SmallRng::seed_from_u64(5);
     for x in particles.x.iter_mut() {
         *x += Vector::<2>::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0))
             * (jitter * DX);
-        sim.domain.wrap(x);
+        sim.domain().wrap(x);
     }
-    let kernel = sph_core::kernel::WendlandC2::new(1.33 * DX, 2);
-    let domain = sim.domain;
+    let kernel = sph_core::physics::kernel::WendlandC2::new(1.33 * DX, 2);
+    let domain = *sim.domain();
     let (list, _) =
         sph_core::neighbours::NeighbourList::build(&mut particles, &domain, kernel.radius(), 0.0);
-    let surface = sph_core::free_surface::detect(&kernel, &particles, &list, &domain);
+    let surface = sph_core::physics::free_surface::detect(&kernel, &particles, &list, &domain);
     Layout {
         particles,
         list,
@@ -260,7 +261,7 @@ fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
 }
 
 fn displacements(l: &Layout, cfl_ma: f64) -> Vec<Vector<2>> {
-    sph_core::shifting::displacements(
+    sph_core::physics::shifting::displacements(
         &l.kernel,
         DX,
         &l.particles,
@@ -350,7 +351,8 @@ fn shifting_is_tangential_at_the_surface_and_leaves_splashes_alone() {
         0.0,
     );
     l.list = list;
-    l.surface = sph_core::free_surface::detect(&l.kernel, &l.particles, &l.list, &l.domain);
+    l.surface =
+        sph_core::physics::free_surface::detect(&l.kernel, &l.particles, &l.list, &l.domain);
     let dr = displacements(&l, 0.01);
     let s = &l.surface;
     let (mut near, mut worst_normal, mut longest_near) = (0, 0.0f64, 0.0f64);

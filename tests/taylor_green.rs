@@ -26,10 +26,10 @@ fn decay_rates(viscosity: &str, t_end: f64) -> (f64, f64) {
     );
     let mut sim = Simulation::<2>::new(case).unwrap();
     let (mut t, mut log_e, mut log_a) = (vec![0.0], vec![sim.energies().kinetic.ln()], vec![0.0]);
-    while sim.time < t_end - 1e-12 {
+    while sim.time() < t_end - 1e-12 {
         sim.step().unwrap();
         // Amplitude: least-squares projection of u on the Taylor-Green mode (U = 1).
-        let p = &sim.particles;
+        let p = sim.particles();
         let (mut num, mut den) = (0.0, 0.0);
         for i in 0..p.len() {
             let (a, b) = (k * p.x[i][0], k * p.x[i][1]);
@@ -37,7 +37,7 @@ fn decay_rates(viscosity: &str, t_end: f64) -> (f64, f64) {
             num += p.mass[i] * (p.u[i][0] * px + p.u[i][1] * py);
             den += p.mass[i] * (px * px + py * py);
         }
-        t.push(sim.time);
+        t.push(sim.time());
         log_a.push((num / den).ln());
         log_e.push(sim.energies().kinetic.ln());
     }

@@ -39,9 +39,9 @@ fn drop(scheme: &str, cfl: f64) -> Simulation<2> {
 fn end_state(scheme: &str, cfl: f64) -> (Vec<[f64; 2]>, Vec<f64>) {
     let mut sim = drop(scheme, cfl);
     let mut dts = Vec::new();
-    while sim.time < sim.case.time.end * (1.0 - 1e-12) {
+    while sim.time() < sim.case().time.end * (1.0 - 1e-12) {
         sim.step().unwrap();
-        dts.push(sim.dt);
+        dts.push(sim.dt());
     }
     // every step but the last (shortened to land on the end) has the same length
     let dt = dts[0];
@@ -49,7 +49,7 @@ fn end_state(scheme: &str, cfl: f64) -> (Vec<[f64; 2]>, Vec<f64>) {
         dts[..dts.len() - 1].iter().all(|&d| d == dt),
         "a fixed step"
     );
-    let p = &sim.particles;
+    let p = sim.particles();
     let mut x = vec![[0.0; 2]; p.len()];
     let mut rho = vec![0.0; p.len()];
     for i in 0..p.len() {

@@ -7,7 +7,7 @@ use deltasph_suite::{example_case, read_csv, refdata};
 use sph_core::{Kind, Simulation, Vector};
 
 fn run_to<const D: usize>(sim: &mut Simulation<D>, t: f64) {
-    while sim.time < t * (1.0 - 1e-12) {
+    while sim.time() < t * (1.0 - 1e-12) {
         sim.step_until(t).unwrap();
     }
 }
@@ -19,7 +19,7 @@ fn elliptic_drop(overrides: &[&str], t: f64) -> (f64, f64, f64) {
     let case = example_case("validation/elliptic_drop.toml", overrides);
     let mut sim = Simulation::<2>::new(case).unwrap();
     let moments = |sim: &Simulation<2>| {
-        let p = &sim.particles;
+        let p = sim.particles();
         let n = p.len() as f64;
         let m: Vector<2> = p.x.iter().map(|x| x.component_mul(x)).sum();
         m / n
@@ -89,7 +89,7 @@ fn poiseuille_error<const D: usize>(name: &str, spacing: f64, t: f64) -> f64 {
     let case = example_case(name, &[&format!("particles.spacing = {spacing}")]);
     let mut sim = Simulation::<D>::new(case).unwrap();
     run_to(&mut sim, t);
-    let p = &sim.particles;
+    let p = sim.particles();
     let (sum, n) = (0..p.len())
         .filter(|&i| p.kind[i] == Kind::Fluid)
         .map(|i| (p.u[i][0] - poiseuille_exact(p.x[i][1], t)).powi(2))
@@ -132,16 +132,16 @@ fn patch_impact(diffusion: &str) -> Impact {
     let scale = 1000.0 * 20.0 * 1.0;
     let (release, origin) = (0.025, Vector::<2>::zeros());
     let (mut sum, mut n) = (0.0, 0);
-    while sim.time < 0.05 * (1.0 - 1e-12) {
+    while sim.time() < 0.05 * (1.0 - 1e-12) {
         sim.step().unwrap();
-        if (0.2 * release..0.8 * release).contains(&sim.time) {
+        if (0.2 * release..0.8 * release).contains(&sim.time()) {
             sim.sync_pressure();
             sum += sim.probe_pressure(&origin);
             n += 1;
         }
     }
     sim.sync_pressure();
-    let p = &sim.particles;
+    let p = sim.particles();
     let inner: Vec<usize> = (0..p.len())
         .filter(|&i| p.x[i].iter().all(|c| c.abs() < 0.45))
         .collect();
@@ -176,7 +176,7 @@ fn patch_impact_reaches_the_acoustic_pressure_and_delta_sph_removes_the_noise() 
 
 /// Wendland C2 Shepard average of the fluid velocity at `point` (support 2h).
 fn velocity_at(sim: &Simulation<2>, point: Vector<2>) -> Vector<2> {
-    let (p, h) = (&sim.particles, sim.case.h());
+    let (p, h) = (sim.particles(), sim.case().h());
     let (mut sum, mut weight) = (Vector::<2>::zeros(), 0.0);
     for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid) {
         let q = (p.x[i] - point).norm() / h;
@@ -195,13 +195,13 @@ fn velocity_at(sim: &Simulation<2>, point: Vector<2>) -> Vector<2> {
 fn lid_driven_cavity_approaches_ghia() {
     let case = example_case("validation/cavity.toml", &["particles.spacing = 0.05"]);
     let mut sim = Simulation::<2>::new(case).unwrap();
-    let lid: Vec<(u32, Vector<2>)> = (0..sim.particles.len())
-        .filter(|&i| sim.particles.u[i][0] == 1.0)
-        .map(|i| (sim.particles.id[i], sim.particles.x[i]))
+    let lid: Vec<(u32, Vector<2>)> = (0..sim.particles().len())
+        .filter(|&i| sim.particles().u[i][0] == 1.0)
+        .map(|i| (sim.particles().id[i], sim.particles().x[i]))
         .collect();
     run_to(&mut sim, 10.0);
     // The lid slides in its own plane: its particles keep their places and velocity.
-    let p = &sim.particles;
+    let p = sim.particles();
     for &(id, x0) in &lid {
         let i = p.id.iter().position(|&j| j == id).unwrap();
         assert_eq!((p.x[i], p.u[i]), (x0, Vector::<2>::new(1.0, 0.0)));

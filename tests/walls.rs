@@ -9,7 +9,7 @@ fn worst_crossings(overrides: &[&str]) -> usize {
     let mut sim = Simulation::<2>::new(example_case("dam_break_2d.toml", overrides)).unwrap();
     let end = 7.0 * (0.6f64 / 9.81).sqrt();
     let mut worst = 0;
-    while sim.time < end * (1.0 - 1e-12) {
+    while sim.time() < end * (1.0 - 1e-12) {
         sim.step()
             .unwrap_or_else(|e| panic!("dam break with {overrides:?}: {e}"));
         worst = worst.max(sim.wall_crossings());
@@ -44,12 +44,8 @@ fn wall_crossings_counts_fluid_inside_the_walls_only() {
     ))
     .unwrap();
     let (right, top, dx) = (3.2196, 1.8, 0.05);
-    let fluid = sim
-        .particles
-        .kind
-        .iter()
-        .position(|&k| k == Kind::Fluid)
-        .unwrap();
+    let p = sim.particles();
+    let id = p.id[p.kind.iter().position(|&k| k == Kind::Fluid).unwrap()];
     for (x, y, expected) in [
         (right - 0.4 * dx, 0.3, 0),      // in the tank, by the wall
         (right + 1.5 * dx, 0.3, 1),      // in the right wall
@@ -57,7 +53,10 @@ fn wall_crossings_counts_fluid_inside_the_walls_only() {
         (1.0, -0.6 * dx, 1),             // under the floor
         (right + 5.0 * dx, 0.3, 0),      // outside, beyond the wall layers
     ] {
-        sim.particles.x[fluid] = Vector::<2>::new(x, y);
+        sim.edit(|p| {
+            let k = p.id.iter().position(|&i| i == id).unwrap();
+            p.x[k] = Vector::<2>::new(x, y);
+        });
         assert_eq!(sim.wall_crossings(), expected, "at ({x}, {y})");
     }
 }
@@ -67,7 +66,7 @@ fn wall_crossings_counts_fluid_inside_the_walls_only() {
 fn worst_crossings_of<const D: usize>(name: &str, overrides: &[&str]) -> usize {
     let mut sim = Simulation::<D>::new(example_case(name, overrides)).unwrap();
     let mut worst = 0;
-    while sim.time < sim.case.time.end * (1.0 - 1e-12) {
+    while sim.time() < sim.case().time.end * (1.0 - 1e-12) {
         sim.step().unwrap_or_else(|e| panic!("{name}: {e}"));
         worst = worst.max(sim.wall_crossings());
     }

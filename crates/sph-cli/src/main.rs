@@ -5,8 +5,8 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1};
 use signal_hook::flag;
-use sph_core::output::Output;
-use sph_core::restart;
+use sph_core::io::output::Output;
+use sph_core::io::restart;
 use sph_core::run::{Control, Ending, Run};
 use sph_core::{Case, Simulation, SphError};
 use std::path::{Path, PathBuf};
@@ -163,7 +163,7 @@ fn check(path: &Path) -> Result<()> {
 }
 
 fn counts<const D: usize>(sim: Simulation<D>) -> (usize, usize) {
-    (sim.n_fluid(), sim.particles.len())
+    (sim.n_fluid(), sim.particles().len())
 }
 
 struct RunOptions {
@@ -220,7 +220,7 @@ fn resume_in<const D: usize>(file: &Path, dir: &Path, options: RunOptions) -> Re
     let (checkpoint, schedule) = restart::read::<D>(file)?;
     let sim = Simulation::<D>::from_checkpoint(checkpoint, options.until)?;
     let mut output = Output::resume(dir, schedule.snapshots, options.force)?;
-    output.resume_series(&sim.series_header(), sim.time)?;
+    output.resume_series(&sim.series_header(), sim.time())?;
     drive(Run::resume(sim, output, schedule), &options)
 }
 
@@ -254,15 +254,16 @@ fn drive<const D: usize>(mut run: Run<D>, options: &RunOptions) -> Result<()> {
     let signal = stop_signal()?;
     let bar = progress_bar(options.quiet);
     let start = Instant::now();
-    let first_step = run.sim.counters.steps;
-    let end = run.sim.case.time.end;
+    let first_step = run.sim.counters().steps;
+    let end = run.sim.case().time.end;
     let mut on_step = |sim: &Simulation<D>| {
-        let steps = sim.counters.steps - first_step;
+        let steps = sim.counters().steps - first_step;
         let steps_per_s = steps as f64 / start.elapsed().as_secs_f64();
-        bar.set_position((1000.0 * sim.time / end) as u64);
+        bar.set_position((1000.0 * sim.time() / end) as u64);
         bar.set_message(format!(
             "{:.4} s, {} steps, {steps_per_s:.1} steps/s",
-            sim.time, sim.counters.steps
+            sim.time(),
+            sim.counters().steps
         ));
     };
     let ending = run.drive(&mut Control {
@@ -272,7 +273,7 @@ fn drive<const D: usize>(mut run: Run<D>, options: &RunOptions) -> Result<()> {
     });
     bar.finish_and_clear();
     summary(&run);
-    let (time, step) = (run.sim.time, run.sim.counters.steps);
+    let (time, step) = (run.sim.time(), run.sim.counters().steps);
     let failure = |code: u8, message: String| Err(Failure { message, code }.into());
     match ending {
         Ending::Finished { restart } => {
@@ -319,27 +320,29 @@ fn summary<const D: usize>(run: &Run<D>) {
     let (sim, output, since) = (&run.sim, &run.output, run.since);
     let wall = run.wall.as_secs_f64();
     let n = sim.n_fluid();
-    let c = sim.counters;
+    let c = sim.counters();
     let e1 = sim.energies();
     let initial_energy = run.schedule.initial_energy;
-    println!("case            {} ({}D)", sim.case.name, D);
+    println!("case            {} ({}D)", sim.case().name, D);
     println!(
         "particles       {} fluid, {} wall",
         n,
-        sim.particles.len() - n
+        sim.particles().len() - n
     );
     println!(
         "scheme          {:?} diffusion (δ = {}), {:?} viscosity, {:?}, CFL {}",
-        sim.case.scheme.diffusion,
-        sim.case.scheme.delta,
-        sim.case.scheme.viscosity,
-        sim.case.scheme.integrator,
-        sim.case.scheme.cfl()
+        sim.case().scheme.diffusion,
+        sim.case().scheme.delta,
+        sim.case().scheme.viscosity,
+        sim.case().scheme.integrator,
+        sim.case().scheme.cfl()
     );
     println!("sound speed     c0 = {:.4} m/s", sim.physics().eos.c0);
     println!(
         "simulated       t = {:.6} s in {} steps (last Δt = {:.3e} s)",
-        sim.time, c.steps, sim.dt
+        sim.time(),
+        c.steps,
+        sim.dt()
     );
     println!("wall time       {wall:.2} s");
     println!(
@@ -357,7 +360,7 @@ fn summary<const D: usize>(run: &Run<D>) {
         "walls           {} fluid particles inside a wall at the end",
         sim.wall_crossings()
     );
-    let (lo, hi) = (sim.domain.lo, sim.domain.hi);
+    let (lo, hi) = (sim.domain().lo, sim.domain().hi);
     println!(
         "removed         {} fluid particles left the domain {:?} – {:?}",
         sim.removed(),
@@ -370,7 +373,7 @@ fn summary<const D: usize>(run: &Run<D>) {
         e1.total(),
         e1.total() - initial_energy
     );
-    if let Some(b) = sim.budget {
+    if let Some(b) = sim.budget() {
         println!(
             "                ∫(P_V+P_D+P_W)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
             b.dissipated, b.removed_energy

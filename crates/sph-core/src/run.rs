@@ -14,8 +14,8 @@
 //! its restart files is the uninterrupted run bit for bit.
 
 use crate::error::{Result, SphError};
-use crate::output::Output;
-use crate::restart::Schedule;
+use crate::io::output::Output;
+use crate::io::restart::Schedule;
 use crate::simulation::{Counters, Simulation};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -69,7 +69,7 @@ impl<const D: usize> Run<D> {
         let schedule = Schedule {
             next_snapshot: snap_every,
             next_series: series_every,
-            next_restart: sim.case.output.restart_interval.unwrap_or(f64::INFINITY),
+            next_restart: sim.case().output.restart_interval.unwrap_or(f64::INFINITY),
             snapshots: 0,
             initial_energy: sim.energies().total(),
         };
@@ -83,7 +83,7 @@ impl<const D: usize> Run<D> {
     /// A run continued from a restart file's simulation and schedule, in its folder.
     pub fn resume(sim: Simulation<D>, output: Output, schedule: Schedule) -> Self {
         Self {
-            since: sim.counters,
+            since: sim.counters(),
             sim,
             output,
             schedule,
@@ -93,9 +93,10 @@ impl<const D: usize> Run<D> {
 
     fn snapshot(&mut self) -> Result<PathBuf> {
         let (sim, output) = (&self.sim, &mut self.output);
-        let steps = sim.counters.steps;
-        let path =
-            sim.with_extras(|extras| output.snapshot(&sim.particles, extras, sim.time, steps))?;
+        let steps = sim.counters().steps;
+        let path = crate::io::output::with_extras(sim, |extras| {
+            output.snapshot(sim.particles(), extras, sim.time(), steps)
+        })?;
         self.schedule.snapshots += 1;
         Ok(path)
     }
@@ -108,14 +109,17 @@ impl<const D: usize> Run<D> {
     /// The series row and snapshot due after the step just taken.
     fn record(&mut self, series_every: f64, snap_every: f64) -> Result<bool> {
         let mut wrote_row = false;
-        if self.sim.time >= self.schedule.next_series {
+        if self.sim.time() >= self.schedule.next_series {
             let row = self.sim.series_values();
             self.output.series_row(&row)?;
             self.schedule.next_series += series_every;
             wrote_row = true;
         }
-        let end = self.sim.case.time.end;
-        if snap_every > 0.0 && self.sim.time >= self.schedule.next_snapshot && self.sim.time < end {
+        let end = self.sim.case().time.end;
+        if snap_every > 0.0
+            && self.sim.time() >= self.schedule.next_snapshot
+            && self.sim.time() < end
+        {
             self.sim.sync_pressure();
             self.snapshot()?;
             self.schedule.next_snapshot += snap_every;
@@ -125,15 +129,15 @@ impl<const D: usize> Run<D> {
 
     /// Whether a restart file is due, on simulated time or on wall time.
     fn restart_due(&mut self, control: &Control<D>, last: Instant) -> bool {
-        let on_time = self.sim.time >= self.schedule.next_restart;
+        let on_time = self.sim.time() >= self.schedule.next_restart;
         if on_time {
             let every = self
                 .sim
-                .case
+                .case()
                 .output
                 .restart_interval
                 .unwrap_or(f64::INFINITY);
-            while self.schedule.next_restart <= self.sim.time {
+            while self.schedule.next_restart <= self.sim.time() {
                 self.schedule.next_restart += every;
             }
         }
@@ -146,16 +150,16 @@ impl<const D: usize> Run<D> {
     /// Steps to the end time (or step cap, or a stop request), writing output on its
     /// intervals, and ends as [`Ending`] says.
     pub fn drive(&mut self, control: &mut Control<D>) -> Ending {
-        let end = self.sim.case.time.end;
+        let end = self.sim.case().time.end;
         let (snap_every, series_every) = intervals(&self.sim);
-        let max_steps = self.sim.case.time.max_steps.unwrap_or(u64::MAX);
+        let max_steps = self.sim.case().time.max_steps.unwrap_or(u64::MAX);
         let start = Instant::now();
         let mut last_restart = Instant::now();
-        let mut last_row = self.sim.time;
+        let mut last_row = self.sim.time();
         let flag = control.stop;
         let stop = || flag.load(Ordering::Relaxed);
-        while self.sim.time < end * (1.0 - 1e-12)
-            && self.sim.counters.steps < max_steps
+        while self.sim.time() < end * (1.0 - 1e-12)
+            && self.sim.counters().steps < max_steps
             && stop() == 0
         {
             if let Err(error) = self.sim.step() {
@@ -166,7 +170,7 @@ impl<const D: usize> Run<D> {
                 };
             }
             match self.record(series_every, snap_every) {
-                Ok(true) => last_row = self.sim.time,
+                Ok(true) => last_row = self.sim.time(),
                 Ok(false) => {}
                 Err(error) => return self.output_failed(error, start),
             }
@@ -186,7 +190,7 @@ impl<const D: usize> Run<D> {
         self.sim.sync_pressure();
         let signal = stop();
         let closing = (|| -> Result<PathBuf> {
-            if signal == 0 && self.sim.time > last_row {
+            if signal == 0 && self.sim.time() > last_row {
                 // the closing row (a stopped run gets it when it reaches its end)
                 let row = self.sim.series_values();
                 self.output.series_row(&row)?;
@@ -218,10 +222,10 @@ impl<const D: usize> Run<D> {
 
 /// Intervals of the snapshots and of the time-series rows.
 pub fn intervals<const D: usize>(sim: &Simulation<D>) -> (f64, f64) {
-    let end = sim.case.time.end;
-    let snap_every = sim.case.time.output_interval;
+    let end = sim.case().time.end;
+    let snap_every = sim.case().time.output_interval;
     let series_every = sim
-        .case
+        .case()
         .diagnostics
         .interval
         .unwrap_or(if snap_every > 0.0 {

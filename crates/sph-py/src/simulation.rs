@@ -17,7 +17,7 @@ const REMOVED: u8 = 255;
 
 /// Rows of the state arrays: one per id ever given.
 fn rows<const D: usize>(s: &Simulation<D>) -> usize {
-    s.particles.next_id as usize
+    s.particles().next_id as usize
 }
 
 /// How long the solver runs detached before it looks at Ctrl-C and reports progress.
@@ -52,16 +52,16 @@ impl Target {
     fn reached<const D: usize>(&self, s: &Simulation<D>) -> bool {
         match *self {
             Target::Time { until, max_steps } => {
-                s.time >= until * (1.0 - 1e-12) || s.counters.steps >= max_steps
+                s.time() >= until * (1.0 - 1e-12) || s.counters().steps >= max_steps
             }
-            Target::Steps(n) => s.counters.steps >= n,
+            Target::Steps(n) => s.counters().steps >= n,
         }
     }
 
     fn limit<const D: usize>(&self, s: &Simulation<D>) -> f64 {
         match *self {
             Target::Time { until, .. } => until,
-            Target::Steps(_) => s.case.time.end,
+            Target::Steps(_) => s.case().time.end,
         }
     }
 }
@@ -82,30 +82,29 @@ fn set_velocities<const D: usize>(
     s: &mut Simulation<D>,
     velocities: &Bound<'_, PyAny>,
 ) -> PyResult<()> {
-    let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles.id, rows(s))?;
+    let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles().id, rows(s))?;
     let moving_wall =
-        (0..u.len()).find(|&k| s.particles.kind[k] == Kind::Wall && u[k].norm_squared() > 0.0);
+        (0..u.len()).find(|&k| s.particles().kind[k] == Kind::Wall && u[k].norm_squared() > 0.0);
     if let Some(k) = moving_wall {
         return Err(PyValueError::new_err(format!(
             "velocities: row {} is a wall particle, expected zero (walls are fixed)",
-            s.particles.id[k]
+            s.particles().id[k]
         )));
     }
-    s.particles.u = u;
-    s.state_changed();
+    s.edit(|p| p.u = u);
     Ok(())
 }
 
 fn set_density<const D: usize>(s: &mut Simulation<D>, density: &Bound<'_, PyAny>) -> PyResult<()> {
-    let rho = arrays::read_scalars(density, "density", &s.particles.id, rows(s))?;
+    let rho = arrays::read_scalars(density, "density", &s.particles().id, rows(s))?;
     if let Some(k) = rho.iter().position(|&r| r <= 0.0) {
         return Err(PyValueError::new_err(format!(
             "density: row {} = {}, expected a positive density",
-            s.particles.id[k], rho[k]
+            s.particles().id[k],
+            rho[k]
         )));
     }
-    s.particles.rho = rho;
-    s.state_changed();
+    s.edit(|p| p.rho = rho);
     Ok(())
 }
 
@@ -136,7 +135,7 @@ impl PySimulation {
     }
 
     fn case(&self) -> &Case {
-        each!(&self.solver, s => &s.case)
+        each!(&self.solver, s => &s.case())
     }
 
     fn fresh_pressure(&mut self) {
@@ -257,19 +256,19 @@ impl PySimulation {
     /// Simulated time [s].
     #[getter]
     fn time(&self) -> f64 {
-        each!(&self.solver, s => s.time)
+        each!(&self.solver, s => s.time())
     }
 
     /// The last time step [s] (0 before the first step).
     #[getter]
     fn dt(&self) -> f64 {
-        each!(&self.solver, s => s.dt)
+        each!(&self.solver, s => s.dt())
     }
 
     /// Steps taken so far.
     #[getter]
     fn n_steps(&self) -> u64 {
-        each!(&self.solver, s => s.counters.steps)
+        each!(&self.solver, s => s.counters().steps)
     }
 
     /// 2 or 3.
@@ -295,7 +294,7 @@ impl PySimulation {
     /// for every id ever given: this plus ``n_removed``).
     #[getter]
     fn n_particles(&self) -> usize {
-        each!(&self.solver, s => s.particles.len())
+        each!(&self.solver, s => s.particles().len())
     }
 
     /// Number of fluid particles.
@@ -331,20 +330,20 @@ impl PySimulation {
     /// Positions [m], float64 array (N, D), a copy.
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, rows(s), &s.particles.x))
+        each!(&self.solver, s => arrays::vectors(py, &s.particles().id, rows(s), &s.particles().x))
     }
 
     /// Velocities [m/s], float64 array (N, D), a copy. Walls are fixed (zero).
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        each!(&self.solver, s => arrays::vectors(py, &s.particles.id, rows(s), &s.particles.u))
+        each!(&self.solver, s => arrays::vectors(py, &s.particles().id, rows(s), &s.particles().u))
     }
 
     /// Density [kg/m³], float64 array (N,), a copy; walls carry their extrapolated value.
     #[getter]
     fn density<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.fresh_pressure();
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.rho, (f64::NAN, |v| v)))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles().id, rows(s), &s.particles().rho, (f64::NAN, |v| v)))
     }
 
     /// Pressure [Pa], float64 array (N,), a copy: the EOS for fluid, the
@@ -352,19 +351,19 @@ impl PySimulation {
     #[getter]
     fn pressure<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         self.fresh_pressure();
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.p, (f64::NAN, |v| v)))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles().id, rows(s), &s.particles().p, (f64::NAN, |v| v)))
     }
 
     /// Mass [kg] (per unit depth in 2D), float64 array (N,), a copy.
     #[getter]
     fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.mass, (f64::NAN, |v| v)))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles().id, rows(s), &s.particles().mass, (f64::NAN, |v| v)))
     }
 
     /// Particle kind, uint8 array (N,): 0 fluid (deltasph.FLUID), 1 wall (deltasph.WALL).
     #[getter]
     fn kind<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u8>> {
-        each!(&self.solver, s => arrays::scalars(py, &s.particles.id, rows(s), &s.particles.kind, (REMOVED, |k| k as u8)))
+        each!(&self.solver, s => arrays::scalars(py, &s.particles().id, rows(s), &s.particles().kind, (REMOVED, |k| k as u8)))
     }
 
     /// Fluid particles inside a wall now: past the first layer of wall particles of a
@@ -379,7 +378,7 @@ impl PySimulation {
     /// the walls, -∫(P_V + P_D + P_W) dt, so that ``total + dissipated`` stays
     /// constant; None unless the case sets ``diagnostics.energy_budget = true``.
     fn energies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (e, budget) = each!(&self.solver, s => (s.energies(), s.budget));
+        let (e, budget) = each!(&self.solver, s => (s.energies(), s.budget()));
         let dict = PyDict::new(py);
         dict.set_item("kinetic", e.kinetic)?;
         dict.set_item("potential", e.potential)?;
@@ -413,7 +412,7 @@ impl PySimulation {
         let dict = PyDict::new(py);
         each!(&self.solver, s => {
             let f = s.free_surface();
-            let (id, n) = (&s.particles.id, rows(s));
+            let (id, n) = (&s.particles().id, rows(s));
             dict.set_item("on_surface", arrays::scalars(py, id, n, &f.on_surface, (false, |b| b)))?;
             dict.set_item("normal", arrays::vectors(py, id, n, &f.normal))?;
             dict.set_item("lambda", arrays::scalars(py, id, n, &f.lambda, (f64::NAN, |v| v)))?;
@@ -449,13 +448,13 @@ impl PySimulation {
         overwrite: bool,
     ) -> PyResult<PathBuf> {
         self.fresh_pressure();
-        each!(&self.solver, s => s.with_extras(|extras| {
-            sph_core::output::write_indexed_snapshot(
+        each!(&self.solver, s => sph_core::io::output::with_extras(s, |extras| {
+            sph_core::io::output::write_indexed_snapshot(
                 &path,
-                &s.particles,
+                s.particles(),
                 extras,
-                s.time,
-                s.counters.steps,
+                s.time(),
+                s.counters().steps,
                 overwrite,
             )
         }))

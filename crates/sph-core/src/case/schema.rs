@@ -2,7 +2,7 @@
 //! default. Unknown keys are rejected by serde; values are checked in
 //! [`super::validate`]. All quantities are SI.
 
-use crate::kernel::KernelChoice;
+use crate::physics::kernel::KernelChoice;
 use serde::{Deserialize, Serialize};
 
 /// A whole case, as written in the TOML file.

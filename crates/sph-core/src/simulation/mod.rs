@@ -1,21 +1,26 @@
 //! A running simulation: particles, neighbour lists, the resolved scheme and the
-//! integrator, advanced step by step. The CLI (and any other front) drives this type.
+//! integrator, advanced step by step. The CLI (and any other front) drives this type;
+//! [`checkpoint`] captures and restores its state, [`series`] gives its time-series
+//! rows.
+
+mod checkpoint;
+mod series;
+
+pub use checkpoint::Checkpoint;
 
 use crate::case::{Case, IntegratorChoice, ShiftingChoice};
 use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
-use crate::equations::{Model, Physics, Powers, Rates};
 use crate::error::{Result, SphError};
-use crate::free_surface::FreeSurface;
 use crate::geometry;
-use crate::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::neighbours::NeighbourList;
-use crate::output::Extras;
 use crate::particles::{Kind, Particles, Vector};
-use crate::restart::Checkpoint;
-use crate::scheme::{build_model, viscosity_k, wall_viscous_weight};
-use crate::timestep::TimeStepControl;
-use crate::viscosity::equivalent_nu;
+use crate::physics::free_surface::FreeSurface;
+use crate::physics::viscosity::equivalent_nu;
+use crate::scheme::model::{Model, Physics, Powers, Rates};
+use crate::scheme::resolve::{build_model, viscosity_k, wall_viscous_weight};
+use crate::time::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
+use crate::time::step_size::TimeStepControl;
 use rayon::prelude::*;
 
 /// The smallest skin of the neighbour lists, as a fraction of the kernel support.
@@ -46,16 +51,18 @@ pub struct EnergyBudget {
     pub last: Powers,
 }
 
+/// A running case; its state is read through methods and changed by stepping (or by
+/// [`Simulation::edit`], which keeps what depends on it consistent).
 pub struct Simulation<const D: usize> {
-    pub case: Case,
-    pub particles: Particles<D>,
-    pub domain: Domain<D>,
-    pub time: f64,
-    pub dt: f64,
-    pub counters: Counters,
-    pub budget: Option<EnergyBudget>,
+    case: Case,
+    particles: Particles<D>,
+    domain: Domain<D>,
+    time: f64,
+    dt: f64,
+    counters: Counters,
+    budget: Option<EnergyBudget>,
     /// δr/Δt of the last shift, when the case shifts particles (δ+-SPH).
-    pub shift_velocity: Option<Vec<Vector<D>>>,
+    shift_velocity: Option<Vec<Vector<D>>>,
     model: Box<dyn Model<D>>,
     integrator: Box<dyn TimeIntegrator<D>>,
     list: NeighbourList<D>,
@@ -119,72 +126,53 @@ impl<const D: usize> Simulation<D> {
         Ok(sim)
     }
 
-    /// The state the next step depends on, for a restart file (see [`crate::restart`]).
-    pub fn checkpoint(&self) -> Result<Checkpoint<D>> {
-        let case_toml = toml::to_string(&self.case)
-            .map_err(|e| SphError::output("restart", format!("case not serialisable: {e}")))?;
-        Ok(Checkpoint {
-            case_toml,
-            particles: self.particles.clone(),
-            list_positions: self.list.reference_positions().to_vec(),
-            skin: self.list.skin,
-            time: self.time,
-            dt: self.dt,
-            counters: self.counters,
-            last_acceleration: self.last_acceleration,
-            budget: self.budget,
-            shift_velocity: self.shift_velocity.clone(),
-        })
+    pub fn case(&self) -> &Case {
+        &self.case
     }
 
-    /// Continues a run from `checkpoint`, to `end` when given, else to the case's end
-    /// time. The next step is the one the checkpointed run would have taken, bit for bit.
-    pub fn from_checkpoint(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
-        let mut case = Case::from_toml_str(&checkpoint.case_toml)?;
-        if let Some(end) = end {
-            if end.is_nan() || end <= checkpoint.time {
-                return Err(SphError::invalid(
-                    "time.end",
-                    end,
-                    format!("a time after the restart time {} s", checkpoint.time),
-                ));
-            }
-            case.time.end = end;
-        }
-        let mut sim = Self::new(case)?;
-        let c = checkpoint;
-        let corrupt = |what: &str| SphError::output("restart", what.to_string());
-        let walls = |p: &Particles<D>| p.len() - p.n_fluid();
-        if walls(&c.particles) != walls(&sim.particles) {
-            return Err(corrupt("its wall particles do not match its case"));
-        }
-        if sim.shift_velocity.is_some() {
-            match &c.shift_velocity {
-                Some(v) if v.len() == c.particles.len() => {}
-                _ => {
-                    return Err(corrupt(
-                        "the case shifts particles but no shifting velocity is stored",
-                    ))
-                }
-            }
-            sim.shift_velocity = c.shift_velocity;
-        }
-        let support = sim.model.support_radius();
-        sim.list = NeighbourList::restore(
-            &c.particles.kind,
-            &sim.domain,
-            support,
-            c.skin,
-            c.list_positions,
-        )
-        .ok_or_else(|| corrupt("particles are not in the order of their neighbour lists"))?;
-        sim.particles = c.particles;
-        sim.time = c.time;
-        sim.dt = c.dt;
-        sim.counters = c.counters;
-        sim.last_acceleration = c.last_acceleration;
-        sim.budget = c.budget;
-        Ok(sim)
+    /// The particles in their current storage order (`id` names each one).
+    pub fn particles(&self) -> &Particles<D> {
+        &self.particles
+    }
+
+    pub fn domain(&self) -> &Domain<D> {
+        &self.domain
+    }
+
+    /// Simulated time [s].
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The last step [s] (0 before the first).
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    pub fn counters(&self) -> Counters {
+        self.counters
+    }
+
+    /// The energy budget, when the case asks for it.
+    pub fn budget(&self) -> Option<EnergyBudget> {
+        self.budget
+    }
+
+    /// δr/Δt of the last shift, when the case shifts particles.
+    pub fn shift_velocity(&self) -> Option<&[Vector<D>]> {
+        self.shift_velocity.as_deref()
+    }
+
+    /// Edits the particles from outside the stepping (a front end setting velocities
+    /// or densities, a test placing particles), then rebuilds the lists and re-derives
+    /// what depends on the state ([`Self::state_changed`]).
+    pub fn edit(&mut self, f: impl FnOnce(&mut Particles<D>)) {
+        f(&mut self.particles);
+        let domain = self.domain;
+        self.particles.x.iter_mut().for_each(|x| domain.wrap(x));
+        let reach = self.reach(self.control.acoustic(), self.max_speed());
+        self.rebuild(reach);
+        self.state_changed();
     }
 
     pub fn physics(&self) -> &Physics<D> {
@@ -217,7 +205,7 @@ impl<const D: usize> Simulation<D> {
 
     fn shift_cap(&self) -> f64 {
         if self.shift_velocity.is_some() {
-            crate::shifting::CAP * self.case.h()
+            crate::physics::shifting::CAP * self.case.h()
         } else {
             0.0
         }
@@ -456,17 +444,6 @@ impl<const D: usize> Simulation<D> {
             .free_surface(&self.particles, &self.list, &self.domain)
     }
 
-    /// Calls `f` with the extra snapshot fields this run has: the free surface (when the
-    /// case asks for it or shifts particles) and the shifting velocity.
-    pub fn with_extras<R>(&self, f: impl FnOnce(&Extras<D>) -> R) -> R {
-        let wanted = self.case.diagnostics.free_surface || self.shift_velocity.is_some();
-        let surface = wanted.then(|| self.free_surface());
-        f(&Extras {
-            surface: surface.as_ref(),
-            shift_velocity: self.shift_velocity.as_deref(),
-        })
-    }
-
     /// Fluid particles inside a wall now (see [`diagnostics::wall_crossings`]).
     pub fn wall_crossings(&self) -> usize {
         diagnostics::wall_crossings(&self.case, &self.particles)
@@ -478,67 +455,5 @@ impl<const D: usize> Simulation<D> {
 
     pub fn n_fluid(&self) -> usize {
         self.particles.n_fluid()
-    }
-}
-
-/// The time-series columns a case asks for, and their values now.
-impl<const D: usize> Simulation<D> {
-    pub fn series_header(&self) -> Vec<String> {
-        let mut h: Vec<String> = ["time", "step", "dt"].map(String::from).to_vec();
-        let diag = &self.case.diagnostics;
-        if diag.energy || diag.energy_budget {
-            h.extend(["kinetic", "potential", "internal", "total"].map(String::from));
-        }
-        if self.budget.is_some() {
-            h.extend(
-                [
-                    "work_of_dissipation_and_walls",
-                    "viscous_power",
-                    "diffusive_power",
-                    "wall_power",
-                    "removed_energy",
-                ]
-                .map(String::from),
-            );
-        }
-        h.push("max_density_variation".into());
-        h.push("removed".into());
-        h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
-        if diag.surge_front_axis.is_some() {
-            h.push("surge_front".into());
-        }
-        h
-    }
-
-    /// One row matching [`Self::series_header`]; refreshes pressures when probes need them.
-    pub fn series_values(&mut self) -> Vec<f64> {
-        let diag = self.case.diagnostics.clone();
-        let mut v = vec![self.time, self.counters.steps as f64, self.dt];
-        if diag.energy || diag.energy_budget {
-            let e = self.energies();
-            v.extend([e.kinetic, e.potential, e.internal, e.total()]);
-        }
-        if let Some(b) = self.budget {
-            v.extend([
-                b.dissipated,
-                b.last.viscous,
-                b.last.diffusive,
-                b.last.wall,
-                b.removed_energy,
-            ]);
-        }
-        v.push(self.max_density_variation());
-        v.push(self.counters.removed as f64);
-        if !diag.probes.is_empty() {
-            self.sync_pressure();
-            for probe in &diag.probes {
-                let point = Vector::<D>::from_fn(|d, _| probe[d]);
-                v.push(self.probe_pressure(&point));
-            }
-        }
-        if let Some(axis) = diag.surge_front_axis {
-            v.push(self.surge_front(axis));
-        }
-        v
     }
 }

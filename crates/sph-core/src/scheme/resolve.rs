@@ -3,12 +3,14 @@
 //! per-pair branch on them.
 
 use crate::case::{Case, DiffusionChoice, ViscosityChoice, WallCondition};
-use crate::diffusion::{DeltaSph, DensityDiffusion, Ferrari, MolteniColagrossi, NoDiffusion};
-use crate::equations::{Model, Physics, Scheme};
-use crate::kernel::{
+use crate::physics::diffusion::{
+    DeltaSph, DensityDiffusion, Ferrari, MolteniColagrossi, NoDiffusion,
+};
+use crate::physics::kernel::{
     CubicSpline, Gaussian, Kernel, KernelChoice, QuinticSpline, WendlandC2, WendlandC4,
 };
-use crate::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
+use crate::physics::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
+use crate::scheme::model::{Model, Physics, Scheme};
 
 /// Builds the model a case asks for, with physical constants already resolved.
 pub fn build_model<const D: usize>(case: &Case, physics: Physics<D>) -> Box<dyn Model<D>> {

@@ -15,9 +15,9 @@
 //!   Two force evaluations per step, diffusion in both.
 
 use crate::domain::Domain;
-use crate::equations::{Model, Rates};
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
+use crate::scheme::model::{Model, Rates};
 use rayon::prelude::*;
 
 /// What a step needs besides the particles.

@@ -7,7 +7,7 @@
 //! `CFL·Ma = U_max Δt/h`, with `V_j = m_j/ρ_j` (the form of the talk and SCHEME.md).
 //! The sum runs over fluid and wall neighbours, so walls push particles away.
 //!
-//! Near the free surface (detected by [`crate::free_surface`]):
+//! Near the free surface (detected by [`crate::physics::free_surface`]):
 //! - particles with `λ_i < 0.4` (splashes, nearly isolated) are not shifted;
 //! - surface particles, particles with `λ_i <= 0.75`, and particles with a surface
 //!   particle among their neighbours keep only the tangential part `(I - n_i⊗n_i) δr_i`,
@@ -17,10 +17,10 @@
 //! corrected for the displacement (the δ+-SPH choice).
 
 use crate::domain::Domain;
-use crate::free_surface::FreeSurface;
-use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
+use crate::physics::free_surface::FreeSurface;
+use crate::physics::kernel::Kernel;
 use rayon::prelude::*;
 
 /// `R` of the anti-clustering term.

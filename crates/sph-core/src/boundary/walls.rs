@@ -28,10 +28,10 @@
 //! particle's withheld expansion is not in the budget.
 
 use crate::domain::Domain;
-use crate::eos::LinearEos;
-use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
+use crate::physics::eos::LinearEos;
+use crate::physics::kernel::Kernel;
 use rayon::prelude::*;
 
 /// Updates pressure, density and viscous velocity of every wall particle from the fluid.

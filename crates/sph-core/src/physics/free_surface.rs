@@ -15,10 +15,10 @@
 //!   wall is not taken for a free surface. Only fluid particles are classified.
 
 use crate::domain::Domain;
-use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
-use crate::renormalisation::guarded_inverse;
+use crate::physics::kernel::Kernel;
+use crate::physics::renormalisation::guarded_inverse;
 use nalgebra::{Matrix3, SMatrix};
 use rayon::prelude::*;
 

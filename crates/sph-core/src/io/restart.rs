@@ -10,13 +10,13 @@
 //! - the output schedule of the driver ([`Schedule`]).
 //!
 //! The file is HDF5 (`restart.h5` in a run folder, the one before it kept as
-//! `restart.prev.h5`), written atomically and synced by [`crate::output::Output`]. It
+//! `restart.prev.h5`), written atomically and synced by [`crate::io::output::Output`]. It
 //! carries the case as TOML, so it is self-contained. Reading checks every shape and
 //! value it relies on: a damaged or foreign file is an error naming what is wrong.
 
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
-use crate::simulation::{Counters, EnergyBudget};
+use crate::simulation::{Checkpoint, Counters, EnergyBudget};
 use std::path::Path;
 
 /// Where the driver of a run stands in its output schedule.
@@ -32,22 +32,6 @@ pub struct Schedule {
     pub snapshots: u64,
     /// `E_k + E_p + E_c` at the start of the run, for the closing summary.
     pub initial_energy: f64,
-}
-
-/// Everything of a [`crate::Simulation`] that the next step depends on.
-#[derive(Debug, Clone)]
-pub struct Checkpoint<const D: usize> {
-    pub case_toml: String,
-    pub particles: Particles<D>,
-    /// Positions at the last neighbour-list build, in the current order.
-    pub list_positions: Vec<Vector<D>>,
-    pub skin: f64,
-    pub time: f64,
-    pub dt: f64,
-    pub counters: Counters,
-    pub last_acceleration: f64,
-    pub budget: Option<EnergyBudget>,
-    pub shift_velocity: Option<Vec<Vector<D>>>,
 }
 
 fn flat<const D: usize>(v: &[Vector<D>]) -> Vec<f64> {
@@ -84,7 +68,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
     if let Some(v) = &c.shift_velocity {
         vector("shifting_velocity", v)?;
     }
-    crate::output::snapshot::write_scalars(&file, p)?;
+    crate::io::output::snapshot::write_scalars(&file, p)?;
     file.new_dataset::<f64>()
         .shape(n)
         .create("mass")?
@@ -131,7 +115,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
             .create("energy_budget")?
             .write_raw(&v)?;
     }
-    crate::output::snapshot::write_creator(&file)?;
+    crate::io::output::snapshot::write_creator(&file)?;
     file.close()
 }
 

@@ -11,11 +11,12 @@ pub mod atomic;
 pub mod manifest;
 pub mod snapshot;
 
-pub use snapshot::{write_indexed_snapshot, write_snapshot, Extras};
+pub use snapshot::{with_extras, write_indexed_snapshot, write_snapshot, Extras};
 
 use crate::error::{Result, SphError};
+use crate::io::restart::{self, Schedule};
 use crate::particles::Particles;
-use crate::restart::{self, Checkpoint, Schedule};
+use crate::simulation::Checkpoint;
 use manifest::Manifest;
 use snapshot::{xdmf, Entry};
 use std::fs::{self, File};

@@ -13,16 +13,16 @@
 //! particles, no shared writes).
 
 use crate::boundary::extrapolate_walls;
-use crate::diffusion::DensityDiffusion;
 use crate::domain::Domain;
-use crate::eos::LinearEos;
-use crate::free_surface::{self, FreeSurface};
-use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
-use crate::renormalisation::density_gradient;
-use crate::shifting;
-use crate::viscosity::Viscosity;
+use crate::physics::diffusion::DensityDiffusion;
+use crate::physics::eos::LinearEos;
+use crate::physics::free_surface::{self, FreeSurface};
+use crate::physics::kernel::Kernel;
+use crate::physics::renormalisation::density_gradient;
+use crate::physics::shifting;
+use crate::physics::viscosity::Viscosity;
 use rayon::prelude::*;
 
 /// Time derivatives of the particle state. `dx/dt = u` is not stored.
@@ -112,7 +112,7 @@ pub trait Model<const D: usize>: Send + Sync {
     /// Sets the particles (current order) where tensile instability control applies, or
     /// `None` to switch it off.
     fn set_tensile_control(&mut self, interior: Option<Vec<bool>>);
-    /// δ+-SPH shifting displacements (see [`crate::shifting`]), `cfl_ma = U_max Δt/h`.
+    /// δ+-SPH shifting displacements (see [`crate::physics::shifting`]), `cfl_ma = U_max Δt/h`.
     fn shift(
         &self,
         particles: &Particles<D>,

@@ -11,8 +11,9 @@
 
 use super::atomic;
 use crate::error::{Result, SphError};
-use crate::free_surface::FreeSurface;
 use crate::particles::Particles;
+use crate::physics::free_surface::FreeSurface;
+use crate::simulation::Simulation;
 use hdf5::types::VarLenUnicode;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -28,6 +29,18 @@ pub struct Extras<'a, const D: usize> {
     pub surface: Option<&'a FreeSurface<D>>,
     /// Velocity of the last δ+-SPH shift, δr/Δt.
     pub shift_velocity: Option<&'a [crate::Vector<D>]>,
+}
+
+/// Calls `f` with the extra snapshot fields `sim` has: the free surface (when the case
+/// asks for it or shifts particles) and the shifting velocity.
+pub fn with_extras<const D: usize, R>(sim: &Simulation<D>, f: impl FnOnce(&Extras<D>) -> R) -> R {
+    let shift_velocity = sim.shift_velocity();
+    let wanted = sim.case().diagnostics.free_surface || shift_velocity.is_some();
+    let surface = wanted.then(|| sim.free_surface());
+    f(&Extras {
+        surface: surface.as_ref(),
+        shift_velocity,
+    })
 }
 
 /// One snapshot listed in the XDMF index.

@@ -10,9 +10,9 @@
 //! density. Only fluid particles get a gradient; walls keep zero.
 
 use crate::domain::Domain;
-use crate::kernel::Kernel;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
+use crate::physics::kernel::Kernel;
 use nalgebra::SMatrix;
 use rayon::prelude::*;
 
@@ -88,7 +88,7 @@ pub fn density_gradient<const D: usize, K: Kernel>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::WendlandC2;
+    use crate::physics::kernel::WendlandC2;
     use nalgebra::{Matrix2, Matrix3};
     use rand::rngs::SmallRng;
     use rand::{Rng, SeedableRng};

@@ -1,0 +1,6 @@
+//! Solid boundaries: fixed dummy wall particles with pressure extrapolated from the
+//! fluid ([`walls`]).
+
+pub mod walls;
+
+pub use walls::extrapolate_walls;

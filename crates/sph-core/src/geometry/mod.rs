@@ -1,0 +1,323 @@
+//! Builds the initial particle set of a case: fluid blocks on a lattice, tank and
+//! wall boxes as layers of fixed dummy particles, the initial density (hydrostatic
+//! or from an analytic field), masses `m_i = ρ_i V0`, the sound speed and the domain.
+//!
+//! What only the built particles can tell is checked here: fluid inside walls or in
+//! two blocks at once, an initial field that does not fit the fluid it fills, probes
+//! that no fluid can reach, particles outside the domain ([`checks`],
+//! [`initial_field`]); the lattice of blocks and walls is [`lattice`].
+
+mod checks;
+pub mod initial_field;
+mod lattice;
+
+use crate::case::{Case, InitialField};
+use crate::domain::Domain;
+use crate::error::{Result, SphError};
+use crate::particles::{Kind, Particles, Vector};
+use crate::physics::eos::LinearEos;
+
+/// Everything the case fixes before the first step.
+pub struct Setup<const D: usize> {
+    pub particles: Particles<D>,
+    pub domain: Domain<D>,
+    pub eos: LinearEos,
+    pub gravity: Vector<D>,
+}
+
+pub(super) fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
+    Vector::from_fn(|d, _| v[d])
+}
+
+/// Builds particles, domain, EOS and gravity for a validated case of dimension `D`.
+pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
+    if case.dimension != D {
+        return Err(SphError::invalid(
+            "dimension",
+            case.dimension,
+            format!("{D} (the dimension of the solver this case was given to)"),
+        ));
+    }
+    let dx = case.dx();
+    let gravity: Vector<D> = vector(&case.gravity());
+    let rho0 = case.fluid.density;
+    let volume = dx.powi(D as i32);
+
+    let mut fluid: Vec<(Vector<D>, Vector<D>, usize)> = Vec::new();
+    for (k, b) in case.fluid_block.iter().enumerate() {
+        let points = lattice::block_points::<D>(b, dx);
+        if points.is_empty() {
+            return Err(SphError::invalid(
+                format!("fluid_block[{k}]"),
+                format!("lo = {:?}, hi = {:?}", b.lo, b.hi),
+                format!("a box at least one spacing ({dx} m) wide along every axis"),
+            ));
+        }
+        let u: Vector<D> = b
+            .velocity
+            .as_deref()
+            .map(vector)
+            .unwrap_or_else(Vector::zeros);
+        fluid.extend(points.into_iter().map(|x| (x, u, k)));
+    }
+
+    let eos = LinearEos {
+        rho0,
+        c0: sound_speed(case, &fluid, &gravity, dx)?,
+        background: case.fluid.background_pressure,
+    };
+    let mut particles = Particles::default();
+    for &(x, mut u, k) in &fluid {
+        let b = &case.fluid_block[k];
+        let mut p = 0.0;
+        if b.hydrostatic.unwrap_or(true) {
+            // p = ρ0 (s_top - s(x)), s(x) = -g·x the height times |g|
+            let top = lattice::corners(&vector(&b.lo), &vector(&b.hi))
+                .iter()
+                .map(|c| -gravity.dot(c))
+                .fold(f64::MIN, f64::max);
+            p = rho0 * (top + gravity.dot(&x));
+        }
+        if let Some(field) = &case.initial {
+            (u, p) = initial_field::value(field, &x, rho0);
+        }
+        let rho = eos.density(p + eos.background);
+        particles.push(Kind::Fluid, x, u, rho, rho * volume);
+    }
+
+    for (x, u) in lattice::wall_points::<D>(case) {
+        particles.push(Kind::Wall, x, u, rho0, rho0 * volume);
+    }
+    checks::check_overlap(&particles, dx)?;
+    initial_field::check(case, &particles)?;
+    let domain = domain_of(case, &particles)?;
+    checks::check_probes(case, &domain)?;
+    Ok(Setup {
+        particles,
+        domain,
+        eos,
+        gravity,
+    })
+}
+
+/// c0 given, or `factor · max(U, sqrt(Δp/ρ0))` with H the fluid height along gravity,
+/// `U = max(|u0|, sqrt(2|g|H))` unless set, `Δp = ρ0|g|H`.
+fn sound_speed<const D: usize>(
+    case: &Case,
+    fluid: &[(Vector<D>, Vector<D>, usize)],
+    gravity: &Vector<D>,
+    dx: f64,
+) -> Result<f64> {
+    if let Some(c0) = case.fluid.sound_speed {
+        return Ok(c0);
+    }
+    let g = gravity.norm();
+    let height = if g > 0.0 {
+        let s: Vec<f64> = fluid.iter().map(|(x, _, _)| -gravity.dot(x) / g).collect();
+        s.iter().cloned().fold(f64::MIN, f64::max) - s.iter().cloned().fold(f64::MAX, f64::min) + dx
+    } else {
+        0.0
+    };
+    let mut u0 = fluid.iter().map(|(_, u, _)| u.norm()).fold(0.0, f64::max);
+    if let Some(InitialField::TaylorGreen { amplitude, .. }) = &case.initial {
+        u0 = u0.max(amplitude.abs());
+    }
+    let u_max = case
+        .fluid
+        .max_velocity
+        .unwrap_or(u0.max((2.0 * g * height).sqrt()));
+    let rho0 = case.fluid.density;
+    let c0 = LinearEos::sound_speed_rule(
+        case.fluid.sound_speed_factor,
+        u_max,
+        rho0 * g * height,
+        rho0,
+    );
+    if c0 > 0.0 {
+        Ok(c0)
+    } else {
+        Err(SphError::invalid(
+            "fluid.sound_speed",
+            "(missing)",
+            "a sound speed: with no gravity and no initial velocity it cannot be derived",
+        ))
+    }
+}
+
+/// The domain of the case: its `[domain]` box, or the particles' bounding box widened
+/// on every side by half its extent along that axis (at least 10Δx), so that fluid
+/// leaving the initial geometry (off an open tank, or splashing high) is removed well
+/// away from it. Every particle must start inside the box.
+fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<Domain<D>> {
+    let Some(dom) = &case.domain else {
+        let (mut lo, mut hi) = (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN));
+        for x in &particles.x {
+            lo = lo.inf(x);
+            hi = hi.sup(x);
+        }
+        let pad = ((hi - lo) * 0.5).map(|p| p.max(10.0 * case.dx()));
+        return Ok(Domain::new(lo - pad, hi + pad, [false; D]));
+    };
+    let periodic: [bool; D] = std::array::from_fn(|d| dom.is_periodic(d));
+    let (lo, hi): (Vector<D>, Vector<D>) = (vector(&dom.lo), vector(&dom.hi));
+    let support = case.support();
+    for d in (0..D).filter(|&d| periodic[d]) {
+        let period = hi[d] - lo[d];
+        if period < 3.3 * support {
+            return Err(SphError::invalid(
+                "domain.hi",
+                format!("{:?}", dom.hi),
+                format!(
+                    "a periodic length of at least 3.3 kernel supports ({:.4} m)",
+                    3.3 * support
+                ),
+            ));
+        }
+    }
+    let outside = |x: &Vector<D>| (0..D).any(|d| x[d] < lo[d] || x[d] > hi[d]);
+    if let Some(k) = particles.x.iter().position(outside) {
+        return Err(SphError::invalid(
+            "domain",
+            format!("lo = {:?}, hi = {:?}", dom.lo, dom.hi),
+            format!(
+                "a box holding every particle (a {:?} particle lies at {:?})",
+                particles.kind[k],
+                particles.x[k].as_slice()
+            ),
+        ));
+    }
+    Ok(Domain::new(lo, hi, periodic))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::initial_field::rotating_square_pressure;
+    use super::*;
+
+    const TANK: &str = r#"
+        dimension = 2
+        [particles]
+        spacing = 0.05
+        [fluid]
+        density = 1000.0
+        gravity = [0.0, -9.81]
+        [[fluid_block]]
+        lo = [0.0, 0.0]
+        hi = [1.2, 0.6]
+        [[tank]]
+        lo = [0.0, 0.0]
+        hi = [3.2196, 1.8]
+        [time]
+        end = 0.1
+    "#;
+
+    fn build_error(text: &str) -> String {
+        let case = Case::from_toml_str(text).unwrap();
+        match build::<2>(&case) {
+            Ok(_) => panic!("built: {text}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn probes_no_fluid_can_reach_are_refused() {
+        let with_probe =
+            |p: &str| format!("{TANK}\n[diagnostics]\nprobes = [[3.2196, 0.16], {p}]\n");
+        let e = build_error(&with_probe("[5.0, 5.0]"));
+        assert!(
+            e.starts_with("diagnostics.probes[1] = [5.0, 5.0]: expected a point inside the domain"),
+            "{e}"
+        );
+        // in the bottom wall, deeper than the kernel support R = 0.133 m: 3 layers of 0.05 m
+        let e = build_error(&with_probe("[1.0, -0.14]"));
+        assert!(
+            e.contains("not deeper than the kernel support inside tank[0]"),
+            "{e}"
+        );
+        // on the wall's face (the P1 probe), in the fluid, and over the open top: fine
+        let case = Case::from_toml_str(&with_probe("[1.0, 2.0]")).unwrap();
+        assert!(build::<2>(&case).is_ok());
+    }
+
+    #[test]
+    fn initial_fields_must_fit_the_fluid_they_fill() {
+        let drop = |radius: f64| {
+            format!(
+                "dimension = 2\n[particles]\nspacing = 0.04\n[fluid]\ndensity = 1000.0\n\
+                 sound_speed = 1400.0\n[[fluid_block]]\nlo = [-1.0, -1.0]\nhi = [1.0, 1.0]\n\
+                 shape = \"ellipsoid\"\n[initial]\ntype = \"elliptic_drop\"\nstrain_rate = 100.0\n\
+                 radius = {radius:?}\n[time]\nend = 0.01\n"
+            )
+        };
+        assert!(build::<2>(&Case::from_toml_str(&drop(1.0)).unwrap()).is_ok());
+        let e = build_error(&drop(0.5));
+        assert!(
+            e.starts_with("initial.radius = 0.5: expected the radius of the fluid the field fills"),
+            "{e}"
+        );
+        let square =
+            TANK.replace(
+                "lo = [0.0, 0.0]\n        hi = [1.2, 0.6]",
+                "lo = [-0.5, -0.5]\n        hi = [0.5, 0.5]",
+            )
+            .replace("gravity = [0.0, -9.81]", "sound_speed = 10.0")
+            .replace(
+                "[[tank]]\n        lo = [0.0, 0.0]\n        hi = [3.2196, 1.8]",
+                "",
+            ) + "[initial]\ntype = \"rotating_square\"\nangular_velocity = 1.0\nside = 2.0\n";
+        let e = build_error(&square);
+        assert!(
+            e.starts_with("initial.side = 2: expected the side of the fluid"),
+            "{e}"
+        );
+        assert!(build::<2>(
+            &Case::from_toml_str(&square.replace("side = 2.0", "side = 1.0")).unwrap()
+        )
+        .is_ok());
+    }
+
+    #[test]
+    fn the_taylor_green_field_must_be_periodic_with_the_domain() {
+        let tg = |wavelength: f64| {
+            format!(
+                "dimension = 2\n[particles]\nspacing = 0.05\n[fluid]\ndensity = 1.0\nsound_speed = 10.0\n\
+                 [[fluid_block]]\nlo = [0.0, 0.0]\nhi = [1.0, 1.0]\nhydrostatic = false\n\
+                 [domain]\nlo = [0.0, 0.0]\nhi = [1.0, 1.0]\nperiodic = [true, true]\n\
+                 [initial]\ntype = \"taylor_green\"\namplitude = 1.0\nwavelength = {wavelength:?}\n\
+                 [time]\nend = 0.1\n"
+            )
+        };
+        assert!(build::<2>(&Case::from_toml_str(&tg(0.5)).unwrap()).is_ok());
+        let e = build_error(&tg(0.3));
+        assert!(
+            e.starts_with("initial.wavelength = 0.3: expected a wavelength that divides"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_default_domain_widens_the_initial_box_by_half() {
+        let case = Case::from_toml_str(TANK).unwrap();
+        let setup = build::<2>(&case).unwrap();
+        let (lo, hi) = (setup.domain.lo, setup.domain.hi);
+        // wall particles span x from -0.125 to 3.325 (70 lattice points from -0.15) and
+        // y from -0.125 to 1.775 (the top is open): half of 3.45 and of 1.9 on each side
+        for (got, want) in [
+            (lo[0], -1.85),
+            (lo[1], -1.075),
+            (hi[0], 5.05),
+            (hi[1], 2.725),
+        ] {
+            assert!((got - want).abs() < 1e-9, "{lo:?} {hi:?}");
+        }
+    }
+
+    /// The centre value quoted in `../shared/refdata/README.md` §5, -0.147343 ρ0 ω² L²,
+    /// and p = 0 on the edges.
+    #[test]
+    fn rotating_square_pressure_series() {
+        assert!((rotating_square_pressure(0.0, 0.0, 1.0) + 0.147343).abs() < 2e-6);
+        assert!((rotating_square_pressure(0.0, 0.0, 2.0) + 4.0 * 0.147343).abs() < 1e-5);
+        assert!(rotating_square_pressure(0.5, 0.1, 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,8 @@
+//! The semi-discrete equations as one resolved type per combination of options
+//! ([`model`]), and the one place where a case's options become those types
+//! ([`resolve`]).
+
+pub mod model;
+pub mod resolve;
+
+pub use model::{Model, Physics, Powers, Rates, Scheme};

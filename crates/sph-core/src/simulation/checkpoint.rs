@@ -1,0 +1,95 @@
+//! The state a step depends on, captured for a restart file and restored from one:
+//! [`Checkpoint`]. Continuing from it is the uninterrupted run bit for bit (see
+//! [`crate::io::restart`] for what that takes).
+
+use super::{Counters, EnergyBudget, Simulation};
+use crate::case::Case;
+use crate::error::{Result, SphError};
+use crate::neighbours::NeighbourList;
+use crate::particles::{Particles, Vector};
+
+/// Everything of a [`Simulation`] that the next step depends on.
+#[derive(Debug, Clone)]
+pub struct Checkpoint<const D: usize> {
+    pub case_toml: String,
+    pub particles: Particles<D>,
+    /// Positions at the last neighbour-list build, in the current order.
+    pub list_positions: Vec<Vector<D>>,
+    pub skin: f64,
+    pub time: f64,
+    pub dt: f64,
+    pub counters: Counters,
+    pub last_acceleration: f64,
+    pub budget: Option<EnergyBudget>,
+    pub shift_velocity: Option<Vec<Vector<D>>>,
+}
+
+impl<const D: usize> Simulation<D> {
+    /// The state the next step depends on, for a restart file (see [`crate::io::restart`]).
+    pub fn checkpoint(&self) -> Result<Checkpoint<D>> {
+        let case_toml = toml::to_string(&self.case)
+            .map_err(|e| SphError::output("restart", format!("case not serialisable: {e}")))?;
+        Ok(Checkpoint {
+            case_toml,
+            particles: self.particles.clone(),
+            list_positions: self.list.reference_positions().to_vec(),
+            skin: self.list.skin,
+            time: self.time,
+            dt: self.dt,
+            counters: self.counters,
+            last_acceleration: self.last_acceleration,
+            budget: self.budget,
+            shift_velocity: self.shift_velocity.clone(),
+        })
+    }
+
+    /// Continues a run from `checkpoint`, to `end` when given, else to the case's end
+    /// time. The next step is the one the checkpointed run would have taken, bit for bit.
+    pub fn from_checkpoint(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
+        let mut case = Case::from_toml_str(&checkpoint.case_toml)?;
+        if let Some(end) = end {
+            if end.is_nan() || end <= checkpoint.time {
+                return Err(SphError::invalid(
+                    "time.end",
+                    end,
+                    format!("a time after the restart time {} s", checkpoint.time),
+                ));
+            }
+            case.time.end = end;
+        }
+        let mut sim = Self::new(case)?;
+        let c = checkpoint;
+        let corrupt = |what: &str| SphError::output("restart", what.to_string());
+        let walls = |p: &Particles<D>| p.len() - p.n_fluid();
+        if walls(&c.particles) != walls(&sim.particles) {
+            return Err(corrupt("its wall particles do not match its case"));
+        }
+        if sim.shift_velocity.is_some() {
+            match &c.shift_velocity {
+                Some(v) if v.len() == c.particles.len() => {}
+                _ => {
+                    return Err(corrupt(
+                        "the case shifts particles but no shifting velocity is stored",
+                    ))
+                }
+            }
+            sim.shift_velocity = c.shift_velocity;
+        }
+        let support = sim.model.support_radius();
+        sim.list = NeighbourList::restore(
+            &c.particles.kind,
+            &sim.domain,
+            support,
+            c.skin,
+            c.list_positions,
+        )
+        .ok_or_else(|| corrupt("particles are not in the order of their neighbour lists"))?;
+        sim.particles = c.particles;
+        sim.time = c.time;
+        sim.dt = c.dt;
+        sim.counters = c.counters;
+        sim.last_acceleration = c.last_acceleration;
+        sim.budget = c.budget;
+        Ok(sim)
+    }
+}

@@ -1,0 +1,66 @@
+//! The time-series row of a run: the columns its case asks for, and their values.
+
+use super::Simulation;
+use crate::particles::Vector;
+
+/// The time-series columns a case asks for, and their values now.
+impl<const D: usize> Simulation<D> {
+    pub fn series_header(&self) -> Vec<String> {
+        let mut h: Vec<String> = ["time", "step", "dt"].map(String::from).to_vec();
+        let diag = &self.case.diagnostics;
+        if diag.energy || diag.energy_budget {
+            h.extend(["kinetic", "potential", "internal", "total"].map(String::from));
+        }
+        if self.budget.is_some() {
+            h.extend(
+                [
+                    "work_of_dissipation_and_walls",
+                    "viscous_power",
+                    "diffusive_power",
+                    "wall_power",
+                    "removed_energy",
+                ]
+                .map(String::from),
+            );
+        }
+        h.push("max_density_variation".into());
+        h.push("removed".into());
+        h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
+        if diag.surge_front_axis.is_some() {
+            h.push("surge_front".into());
+        }
+        h
+    }
+
+    /// One row matching [`Self::series_header`]; refreshes pressures when probes need them.
+    pub fn series_values(&mut self) -> Vec<f64> {
+        let diag = self.case.diagnostics.clone();
+        let mut v = vec![self.time, self.counters.steps as f64, self.dt];
+        if diag.energy || diag.energy_budget {
+            let e = self.energies();
+            v.extend([e.kinetic, e.potential, e.internal, e.total()]);
+        }
+        if let Some(b) = self.budget {
+            v.extend([
+                b.dissipated,
+                b.last.viscous,
+                b.last.diffusive,
+                b.last.wall,
+                b.removed_energy,
+            ]);
+        }
+        v.push(self.max_density_variation());
+        v.push(self.counters.removed as f64);
+        if !diag.probes.is_empty() {
+            self.sync_pressure();
+            for probe in &diag.probes {
+                let point = Vector::<D>::from_fn(|d, _| probe[d]);
+                v.push(self.probe_pressure(&point));
+            }
+        }
+        if let Some(axis) = diag.surge_front_axis {
+            v.push(self.surge_front(axis));
+        }
+        v
+    }
+}

@@ -190,10 +190,10 @@ fn energy_budget_closes_with_viscosity_and_diffusion() {
     let budget = sim.budget().unwrap();
     let e1 = sim.energies().total();
     let lost = e0 - e1;
-    let residual = (e1 - budget.dissipated - e0).abs();
+    let residual = (e1 - budget.work() - e0).abs();
     println!(
         "E {e0:.4} → {e1:.4}, ∫P dt = {:.4}, residual {residual:.2e}",
-        budget.dissipated
+        budget.work()
     );
     assert!(
         budget.last.viscous <= 0.0,

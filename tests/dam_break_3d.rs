@@ -23,7 +23,7 @@ fn three_dimensional_dam_break_is_stable_and_physical() {
         sim.step().unwrap();
     }
     let e1 = sim.energies().total();
-    let residual = (e1 - sim.budget().unwrap().dissipated - e0).abs();
+    let residual = (e1 - sim.budget().unwrap().work() - e0).abs();
     assert!(
         e1 < e0,
         "mechanical energy must decrease overall: {e0} → {e1}"

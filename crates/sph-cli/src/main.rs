@@ -351,9 +351,10 @@ fn summary<const D: usize>(run: &Run<D>) {
         n as f64 * (c.evaluations - since.evaluations) as f64 / wall,
         c.rebuilds
     );
+    let (listed, used) = sim.mean_neighbours();
     println!(
-        "neighbours      {:.1} listed per particle (fluid and wall, incl. skin)",
-        sim.mean_neighbours()
+        "neighbours      {listed:.1} listed per particle (fluid and wall, with the skin), \
+         {used:.1} in the rows of the last step"
     );
     println!("max |Δρ/ρ0|     {:.3e}", sim.max_density_variation());
     println!(
@@ -376,7 +377,8 @@ fn summary<const D: usize>(run: &Run<D>) {
     if let Some(b) = sim.budget() {
         println!(
             "                ∫(P_V+P_D+P_W)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
-            b.dissipated, b.removed_energy
+            b.work(),
+            b.removed_energy
         );
         let caveats = sim.budget_caveats();
         if !caveats.is_empty() {

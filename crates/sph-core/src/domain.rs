@@ -1,8 +1,9 @@
 //! The computational box and its periodic directions.
 //!
-//! Periodic directions wrap pair distances by the minimum-image convention:
-//! `x_ij ← x_ij - L round(x_ij / L)`. Non-periodic directions carry `L = 0`, so
-//! the same branch-free expression leaves them untouched. Along the open (non-periodic)
+//! Periodic directions wrap pair distances by the minimum-image convention: positions
+//! are kept in the box, so `x_ij` lies within one period and is brought to `|x_ij| <=
+//! L/2` by adding or subtracting `L` once (a compare and a subtract, no rounding call in
+//! the pair loops). A domain without periodic directions skips it altogether. Along the open (non-periodic)
 //! directions the box bounds the flow: a fluid particle beyond it has left the flow
 //! ([`Domain::escaped`]) and is removed from the run.
 
@@ -17,6 +18,9 @@ pub struct Domain<const D: usize> {
     /// Period along each direction, 0 where the direction is open.
     pub period: Vector<D>,
     inv_period: Vector<D>,
+    /// Half the period, infinite where the direction is open.
+    half_period: Vector<D>,
+    any_periodic: bool,
 }
 
 impl<const D: usize> Domain<D> {
@@ -27,6 +31,8 @@ impl<const D: usize> Domain<D> {
             hi: Vector::repeat(f64::INFINITY),
             period: Vector::zeros(),
             inv_period: Vector::zeros(),
+            half_period: Vector::repeat(f64::INFINITY),
+            any_periodic: false,
         }
     }
 
@@ -34,10 +40,12 @@ impl<const D: usize> Domain<D> {
     pub fn new(lo: Vector<D>, hi: Vector<D>, periodic: [bool; D]) -> Self {
         let mut period = Vector::zeros();
         let mut inv_period = Vector::zeros();
+        let mut half_period = Vector::repeat(f64::INFINITY);
         for d in 0..D {
             if periodic[d] {
                 period[d] = hi[d] - lo[d];
                 inv_period[d] = 1.0 / period[d];
+                half_period[d] = 0.5 * period[d];
             }
         }
         Self {
@@ -45,6 +53,8 @@ impl<const D: usize> Domain<D> {
             hi,
             period,
             inv_period,
+            half_period,
+            any_periodic: periodic.iter().any(|&p| p),
         }
     }
 
@@ -52,14 +62,24 @@ impl<const D: usize> Domain<D> {
         self.period[d] > 0.0
     }
 
-    /// `x_i - x_j` by minimum image along periodic directions.
+    /// `x_i - x_j` by minimum image along periodic directions, for positions within
+    /// about one period of each other (those in the box, and moved by less than a
+    /// period since they were wrapped).
     #[inline(always)]
     pub fn separation(&self, xi: &Vector<D>, xj: &Vector<D>) -> Vector<D> {
         let mut r = xi - xj;
-        for d in 0..D {
-            r[d] -= self.period[d] * (r[d] * self.inv_period[d]).round();
+        if self.any_periodic {
+            for d in 0..D {
+                let (l, half) = (self.period[d], self.half_period[d]);
+                r[d] -= l * ((r[d] > half) as i32 - (r[d] < -half) as i32) as f64;
+            }
         }
         r
+    }
+
+    /// Whether any direction is periodic.
+    pub fn any_periodic(&self) -> bool {
+        self.any_periodic
     }
 
     /// Whether `x` lies beyond the box along an open direction (false for a

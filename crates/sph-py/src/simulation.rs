@@ -384,7 +384,7 @@ impl PySimulation {
         dict.set_item("potential", e.potential)?;
         dict.set_item("internal", e.internal)?;
         dict.set_item("total", e.total())?;
-        dict.set_item("dissipated", budget.map(|b| 0.0 - b.dissipated))?;
+        dict.set_item("dissipated", budget.map(|b| 0.0 - b.work()))?;
         Ok(dict)
     }
 

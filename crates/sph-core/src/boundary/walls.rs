@@ -29,7 +29,7 @@
 
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
-use crate::particles::{Kind, Particles, Vector};
+use crate::particles::{Particles, Vector};
 use crate::physics::eos::LinearEos;
 use crate::physics::kernel::Kernel;
 use rayon::prelude::*;
@@ -44,14 +44,14 @@ pub fn extrapolate_walls<const D: usize, K: Kernel>(
     domain: &Domain<D>,
 ) {
     let state: &Particles<D> = particles;
-    let updates: Vec<(usize, f64, Vector<D>)> = (0..state.len())
-        .into_par_iter()
-        .filter(|&i| state.kind[i] == Kind::Wall)
-        .map(|i| {
+    let updates: Vec<(usize, f64, Vector<D>)> = list
+        .wall_particles()
+        .par_iter()
+        .map(|&i| {
             let xw = state.x[i];
             let (mut sw, mut sp, mut srx, mut su) =
                 (0.0, 0.0, Vector::<D>::zeros(), Vector::<D>::zeros());
-            for &f in list.of(i) {
+            for &f in list.fluid(i) {
                 let f = f as usize;
                 let x_wf = domain.separation(&xw, &state.x[f]);
                 let w = kernel.w(x_wf.norm());

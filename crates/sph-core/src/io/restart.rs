@@ -109,6 +109,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
             b.last.diffusive,
             b.last.wall,
             b.removed_energy,
+            b.pending,
         ];
         file.new_attr::<f64>()
             .shape(v.len())
@@ -268,15 +269,16 @@ impl Reader<'_> {
         let v: Vec<f64> = a
             .read_raw()
             .map_err(|e| self.corrupt(format!("attribute energy_budget ({e})")))?;
-        if !(4..=5).contains(&v.len()) {
+        if v.len() != 6 {
             return Err(self.corrupt(format!(
-                "energy_budget holds {} values, expected 5",
+                "energy_budget holds {} values, expected 6",
                 v.len()
             )));
         }
         let mut b = EnergyBudget {
             dissipated: v[0],
-            removed_energy: v.get(4).copied().unwrap_or(0.0),
+            removed_energy: v[4],
+            pending: v[5],
             ..Default::default()
         };
         (b.last.viscous, b.last.diffusive, b.last.wall) = (v[1], v[2], v[3]);

@@ -1,189 +1,71 @@
-//! Neighbour search: a cell-linked list turned into per-particle Verlet lists.
+//! Neighbour search: a cell-linked list ([`grid`]) turned into per-particle Verlet
+//! lists, culled at every step to the pairs the step can use.
 //!
-//! Particles are binned into cubic cells of side `>= R + s` (R the kernel support,
-//! s a skin), the arrays are reordered by cell so that neighbours sit close in
-//! memory, and each particle gathers the indices of all particles closer than
-//! `R + s` from its own and the 3^D adjacent cells (wrapped along periodic
-//! directions). The lists stay valid while no particle has moved more than `s/2`
-//! since the build; [`NeighbourList::needs_rebuild`] checks that bound. Pairs in
-//! the skin contribute nothing because every kernel vanishes beyond R.
-//!
-//! Wall particles only keep fluid neighbours: they interact with the fluid
-//! (pressure extrapolation) but never with each other.
+//! - **Build.** Particles are binned into cubic cells of side `>= R + s` (R the kernel
+//!   support, s a skin), the arrays are reordered by cell so that neighbours sit close
+//!   in memory, and each particle gathers the particles closer than `R + s` from its
+//!   own and the 3^D adjacent cells (wrapped along periodic directions), in parallel
+//!   chunks written into one buffer. Each row holds the fluid neighbours first, then
+//!   the walls: the pair loops run the two parts separately, with no per-pair branch
+//!   on the kind. Wall particles keep only fluid neighbours (they interact with the
+//!   fluid, for the pressure extrapolation, never with each other).
+//! - **Validity.** The lists hold every pair closer than `R + s - 2δ` while no particle
+//!   has moved more than δ since the build; [`NeighbourList::max_displacement`] gives δ.
+//! - **Culling.** A step whose particles move by at most `ρ` (its reach) can only use
+//!   pairs closer than `R + 2ρ` at its start. [`NeighbourList::cull`] keeps those in
+//!   each row (in place, in the row's own slot of a second buffer), so that the
+//!   gradient pass and every stage of the step skip the skin: a larger skin then costs
+//!   a cheap distance test per listed pair and step instead of a full pair evaluation
+//!   in every pass, and the lists are rebuilt less often.
+
+mod grid;
 
 use crate::domain::Domain;
 use crate::particles::{Kind, Particles, Vector};
+use grid::Grid;
 use rayon::prelude::*;
 
-/// Verlet lists in compressed-row form plus the cell grid they came from.
+/// Particles per parallel chunk of the list build and the culling.
+const CHUNK: usize = 256;
+
+/// Verlet lists in compressed-row form, their culled rows, and the cell grid they came
+/// from.
 #[derive(Debug, Clone, Default)]
 pub struct NeighbourList<const D: usize> {
-    /// `indices[offsets[i]..offsets[i+1]]` are the neighbours of particle i.
-    pub offsets: Vec<usize>,
-    pub indices: Vec<u32>,
+    /// Row i of the Verlet lists is `indices[start[i]..start[i+1]]`: fluid neighbours
+    /// in `start[i]..wall_start[i]`, wall neighbours after.
+    start: Vec<usize>,
+    wall_start: Vec<usize>,
+    indices: Vec<u32>,
+    /// The culled rows, each in the slot of its Verlet row: fluid neighbours at
+    /// `active[start[i]..][..fluid_len[i]]`, walls at `active[wall_start[i]..][..wall_len[i]]`.
+    active: Vec<u32>,
+    fluid_len: Vec<u32>,
+    wall_len: Vec<u32>,
     /// List radius `R + s`.
-    pub radius: f64,
+    radius: f64,
     /// Skin `s`.
-    pub skin: f64,
+    skin: f64,
     grid: Grid<D>,
     /// Positions at the last build, for the displacement bound.
     x_ref: Vec<Vector<D>>,
+    /// The wall particles, in order.
+    walls: Vec<usize>,
 }
 
-#[derive(Debug, Clone)]
-struct Grid<const D: usize> {
-    origin: Vector<D>,
-    cell: Vector<D>,
-    dims: [usize; D],
-    periodic: [bool; D],
-    /// Particles of cell c are `cell_start[c]..cell_start[c+1]` (arrays are sorted by cell).
-    cell_start: Vec<usize>,
-}
+/// The part of the culled rows one chunk of particles owns: its first particle, its
+/// slot of `active`, and its fluid and wall lengths.
+type CullSlot<'a> = (usize, &'a mut [u32], &'a mut [u32], &'a mut [u32]);
 
-impl<const D: usize> Default for Grid<D> {
-    fn default() -> Self {
-        Self {
-            origin: Vector::zeros(),
-            cell: Vector::repeat(1.0),
-            dims: [1; D],
-            periodic: [false; D],
-            cell_start: vec![0, 0],
-        }
-    }
-}
-
-/// The most cells a grid may have per particle (plus a fixed allowance): a scene whose
-/// particles are scattered over a large box gets wider cells instead of memory that
-/// grows with the box.
-const CELLS_PER_PARTICLE: usize = 4;
-const CELLS_ALLOWANCE: usize = 4096;
-
-impl<const D: usize> Grid<D> {
-    /// Cells of side at least `radius` covering the particles: the whole period along
-    /// periodic directions, the particles' extent along the others.
-    fn new(x: &[Vector<D>], domain: &Domain<D>, radius: f64) -> Self {
-        let mut origin = Vector::zeros();
-        let mut extent = Vector::zeros();
-        let mut periodic = [false; D];
-        for d in 0..D {
-            if domain.is_periodic(d) {
-                origin[d] = domain.lo[d];
-                extent[d] = domain.period[d];
-                periodic[d] = true;
-            } else {
-                let (lo, hi) = x.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
-                    (lo.min(p[d]), hi.max(p[d]))
-                });
-                origin[d] = lo;
-                extent[d] = (hi - lo).max(0.0);
-            }
-        }
-        let budget = (CELLS_PER_PARTICLE * x.len() + CELLS_ALLOWANCE) as f64;
-        let mut side = radius;
-        loop {
-            let dims = Self::dims_for(&extent, &periodic, side);
-            if dims.iter().map(|&n| n as f64).product::<f64>() <= budget {
-                let cell = Vector::from_fn(|d, _| {
-                    if periodic[d] {
-                        extent[d] / dims[d] as f64
-                    } else {
-                        side
-                    }
-                });
-                return Self {
-                    origin,
-                    cell,
-                    dims,
-                    periodic,
-                    cell_start: Vec::new(),
-                };
-            }
-            side *= 1.5;
-        }
-    }
-
-    /// Cells per axis for cells of side at least `side`: along a periodic direction a
-    /// whole number of cells fills the period (one cell when the period is shorter
-    /// than two sides; the stencil then visits each cell once).
-    fn dims_for(extent: &Vector<D>, periodic: &[bool; D], side: f64) -> [usize; D] {
-        std::array::from_fn(|d| {
-            let n = (extent[d] / side).floor();
-            if periodic[d] {
-                n.max(1.0) as usize
-            } else {
-                n as usize + 1
-            }
-        })
-    }
-
-    /// The grid for positions `x` and the stable order that sorts them by cell.
-    fn sorted(x: &[Vector<D>], domain: &Domain<D>, radius: f64) -> (Self, Vec<usize>) {
-        let mut grid = Grid::new(x, domain, radius);
-        let keys: Vec<usize> = x.iter().map(|p| grid.flat(&grid.coords(p))).collect();
-        let order = counting_sort(&keys, grid.n_cells(), &mut grid.cell_start);
-        (grid, order)
-    }
-
-    /// Cell coordinates of a point, clamped into the grid (open directions) or wrapped (periodic).
-    fn coords(&self, p: &Vector<D>) -> [usize; D] {
-        let mut c = [0usize; D];
-        for d in 0..D {
-            let k = ((p[d] - self.origin[d]) / self.cell[d]).floor() as i64;
-            let n = self.dims[d] as i64;
-            c[d] = if self.periodic[d] {
-                k.rem_euclid(n)
-            } else {
-                k.clamp(0, n - 1)
-            } as usize;
-        }
-        c
-    }
-
-    fn flat(&self, c: &[usize; D]) -> usize {
-        let mut idx = 0;
-        for d in (0..D).rev() {
-            idx = idx * self.dims[d] + c[d];
-        }
-        idx
-    }
-
-    fn n_cells(&self) -> usize {
-        self.dims.iter().product()
-    }
-
-    /// Calls `f(cell)` for the cell of `c` and its (up to 3^D) distinct neighbours.
-    /// Along a periodic direction of fewer than three cells the wrapped offsets meet,
-    /// and each cell is visited once.
-    fn for_adjacent(&self, c: &[usize; D], mut f: impl FnMut(usize)) {
-        let total = 3usize.pow(D as u32);
-        'outer: for m in 0..total {
-            let mut nc = [0usize; D];
-            let mut rem = m;
-            for d in 0..D {
-                let off = (rem % 3) as i64 - 1;
-                rem /= 3;
-                let k = c[d] as i64 + off;
-                let n = self.dims[d] as i64;
-                if self.periodic[d] {
-                    // offsets -1, 0, +1 name distinct cells only when n >= 3
-                    if (n == 1 && off != 0) || (n == 2 && off == 1) {
-                        continue 'outer;
-                    }
-                    nc[d] = k.rem_euclid(n) as usize;
-                } else if k < 0 || k >= n {
-                    continue 'outer;
-                } else {
-                    nc[d] = k as usize;
-                }
-            }
-            f(self.flat(&nc));
-        }
-    }
+/// The rows of one chunk of particles, as built.
+struct ChunkRows {
+    /// Fluid and wall neighbour counts of each particle of the chunk.
+    counts: Vec<(u32, u32)>,
+    indices: Vec<u32>,
 }
 
 impl<const D: usize> NeighbourList<D> {
-    /// Reorders `particles` by cell (applying the same permutation to `extra` arrays
-    /// through `reorder`) and builds the lists with radius `support + skin`.
+    /// Reorders `particles` by cell and builds the lists with radius `support + skin`.
     /// Returns the permutation: new index k holds old particle `order[k]`.
     pub fn build(
         particles: &mut Particles<D>,
@@ -194,32 +76,8 @@ impl<const D: usize> NeighbourList<D> {
         let radius = support + skin;
         let (grid, order) = Grid::sorted(&particles.x, domain, radius);
         particles.permute(&order);
-        let lists = gather_lists(particles, domain, &grid, radius);
-        let list = Self::from_lists(lists, radius, skin, grid, particles.x.clone());
+        let list = Self::gather(&particles.x, &particles.kind, domain, grid, radius, skin);
         (list, order)
-    }
-
-    /// Packs per-particle lists into compressed rows.
-    fn from_lists(
-        lists: Vec<Vec<u32>>,
-        radius: f64,
-        skin: f64,
-        grid: Grid<D>,
-        x_ref: Vec<Vector<D>>,
-    ) -> Self {
-        let mut offsets = Vec::with_capacity(lists.len() + 1);
-        offsets.push(0);
-        for l in &lists {
-            offsets.push(offsets.last().unwrap() + l.len());
-        }
-        Self {
-            offsets,
-            indices: lists.concat(),
-            radius,
-            skin,
-            grid,
-            x_ref,
-        }
     }
 
     /// Builds again the lists of an earlier [`Self::build`] whose positions were
@@ -238,13 +96,144 @@ impl<const D: usize> NeighbourList<D> {
         if order.iter().enumerate().any(|(k, &o)| k != o) {
             return None;
         }
-        let probe = Particles {
-            x: reference,
-            kind: kind.to_vec(),
-            ..Default::default()
-        };
-        let lists = gather_lists(&probe, domain, &grid, radius);
-        Some(Self::from_lists(lists, radius, skin, grid, probe.x))
+        Some(Self::gather(&reference, kind, domain, grid, radius, skin))
+    }
+
+    /// The Verlet rows of particles at `x` (sorted by cell in `grid`), all active.
+    fn gather(
+        x: &[Vector<D>],
+        kind: &[Kind],
+        domain: &Domain<D>,
+        grid: Grid<D>,
+        radius: f64,
+        skin: f64,
+    ) -> Self {
+        let n = x.len();
+        let r2 = radius * radius;
+        let chunks: Vec<ChunkRows> = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let rows = c * CHUNK..((c + 1) * CHUNK).min(n);
+                let mut out = ChunkRows {
+                    counts: Vec::with_capacity(rows.len()),
+                    indices: Vec::with_capacity(rows.len() * 48),
+                };
+                let mut walls = Vec::with_capacity(32);
+                for i in rows {
+                    let (xi, wall_i) = (&x[i], kind[i] == Kind::Wall);
+                    let before = out.indices.len();
+                    walls.clear();
+                    grid.for_adjacent(&grid.coords(xi), |cell| {
+                        for j in grid.cell_range(cell) {
+                            if j == i || domain.separation(xi, &x[j]).norm_squared() >= r2 {
+                                continue;
+                            }
+                            match kind[j] {
+                                Kind::Fluid => out.indices.push(j as u32),
+                                Kind::Wall if !wall_i => walls.push(j as u32),
+                                Kind::Wall => {}
+                            }
+                        }
+                    });
+                    let fluid = out.indices.len() - before;
+                    out.indices.extend_from_slice(&walls);
+                    out.counts.push((fluid as u32, walls.len() as u32));
+                }
+                out
+            })
+            .collect();
+        let mut start = Vec::with_capacity(n + 1);
+        start.push(0);
+        let mut wall_start = Vec::with_capacity(n);
+        let (mut fluid_len, mut wall_len) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        let total: usize = chunks.iter().map(|c| c.indices.len()).sum();
+        let mut indices = Vec::with_capacity(total);
+        for chunk in &chunks {
+            for &(f, w) in &chunk.counts {
+                let s = start[start.len() - 1];
+                wall_start.push(s + f as usize);
+                start.push(s + (f + w) as usize);
+                fluid_len.push(f);
+                wall_len.push(w);
+            }
+            indices.extend_from_slice(&chunk.indices);
+        }
+        Self {
+            active: indices.clone(),
+            start,
+            wall_start,
+            indices,
+            fluid_len,
+            wall_len,
+            radius,
+            skin,
+            grid,
+            x_ref: x.to_vec(),
+            walls: (0..n).filter(|&i| kind[i] == Kind::Wall).collect(),
+        }
+    }
+
+    /// The wall particles (their indices in the current order).
+    pub fn wall_particles(&self) -> &[usize] {
+        &self.walls
+    }
+
+    /// Keeps, in every row, the listed neighbours closer than `radius` at positions
+    /// `x`: the pairs a step whose particles move by at most `(radius - R)/2` can use.
+    /// `radius` must not exceed `R + s - 2δ` (δ the displacement since the build), so
+    /// that no pair closer than it is missing from the Verlet rows.
+    pub fn cull(&mut self, x: &[Vector<D>], domain: &Domain<D>, radius: f64) {
+        let n = self.x_ref.len();
+        let r2 = radius * radius;
+        let (start, wall_start, indices) = (&self.start, &self.wall_start, &self.indices);
+        // each chunk of rows owns the contiguous part of `active` its Verlet rows span
+        let mut slots: Vec<CullSlot> = Vec::new();
+        let (mut active, mut fluid_len, mut wall_len) = (
+            &mut self.active[..],
+            &mut self.fluid_len[..],
+            &mut self.wall_len[..],
+        );
+        for c in 0..n.div_ceil(CHUNK) {
+            let (first, last) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
+            let (a, rest_a) = active.split_at_mut(start[last] - start[first]);
+            let (f, rest_f) = fluid_len.split_at_mut(last - first);
+            let (w, rest_w) = wall_len.split_at_mut(last - first);
+            slots.push((first, a, f, w));
+            (active, fluid_len, wall_len) = (rest_a, rest_f, rest_w);
+        }
+        slots
+            .into_par_iter()
+            .for_each(|(first, active, fluid_len, wall_len)| {
+                let base = start[first];
+                for k in 0..fluid_len.len() {
+                    let i = first + k;
+                    let xi = &x[i];
+                    let keep = |from: usize, to: usize, out: &mut [u32]| -> u32 {
+                        let mut m = 0;
+                        for &j in &indices[from..to] {
+                            if domain.separation(xi, &x[j as usize]).norm_squared() < r2 {
+                                out[m] = j;
+                                m += 1;
+                            }
+                        }
+                        m as u32
+                    };
+                    let (s, w, e) = (start[i] - base, wall_start[i] - base, start[i + 1] - base);
+                    let (fluid_part, wall_part) = active[s..e].split_at_mut(w - s);
+                    fluid_len[k] = keep(start[i], wall_start[i], fluid_part);
+                    wall_len[k] = keep(wall_start[i], start[i + 1], wall_part);
+                }
+            });
+    }
+
+    /// List radius `R + s`.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Skin `s`.
+    pub fn skin(&self) -> f64 {
+        self.skin
     }
 
     /// Positions at the last build, in the current order.
@@ -252,15 +241,38 @@ impl<const D: usize> NeighbourList<D> {
         &self.x_ref
     }
 
-    /// Neighbours of particle i (within `R + s` at the last build).
+    /// Fluid neighbours of particle i (culled).
     #[inline(always)]
-    pub fn of(&self, i: usize) -> &[u32] {
-        &self.indices[self.offsets[i]..self.offsets[i + 1]]
+    pub fn fluid(&self, i: usize) -> &[u32] {
+        &self.active[self.start[i]..self.start[i] + self.fluid_len[i] as usize]
     }
 
-    /// Mean number of listed neighbours per particle.
-    pub fn mean_neighbours(&self) -> f64 {
-        self.indices.len() as f64 / (self.offsets.len() - 1).max(1) as f64
+    /// Wall neighbours of particle i (culled; none for a wall particle).
+    #[inline(always)]
+    pub fn walls(&self, i: usize) -> &[u32] {
+        let s = self.wall_start[i];
+        &self.active[s..s + self.wall_len[i] as usize]
+    }
+
+    /// Every neighbour of particle i (culled): the fluid ones, then the walls.
+    #[inline(always)]
+    pub fn of(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
+        self.fluid(i)
+            .iter()
+            .chain(self.walls(i))
+            .map(|&j| j as usize)
+    }
+
+    /// Mean number of neighbours per particle in the Verlet lists, and in the culled rows.
+    pub fn mean_neighbours(&self) -> (f64, f64) {
+        let n = self.x_ref.len().max(1) as f64;
+        let active: u64 = self
+            .fluid_len
+            .iter()
+            .zip(&self.wall_len)
+            .map(|(&f, &w)| (f + w) as u64)
+            .sum();
+        (self.indices.len() as f64 / n, active as f64 / n)
     }
 
     /// The largest displacement of a particle since the build (infinite when the
@@ -276,68 +288,16 @@ impl<const D: usize> NeighbourList<D> {
             .sqrt()
     }
 
-    /// True when some particle may have moved more than `s/2` since the build,
-    /// counting a further `lookahead` that the coming step may add.
-    pub fn needs_rebuild(&self, x: &[Vector<D>], domain: &Domain<D>, lookahead: f64) -> bool {
-        self.max_displacement(x, domain) + lookahead > 0.5 * self.skin
-    }
-
     /// Calls `f(j)` for every particle in the cells that may hold particles within
     /// `R + s/2` of `point` (a superset: the caller measures distances).
     pub fn for_candidates(&self, point: &Vector<D>, mut f: impl FnMut(usize)) {
         let c = self.grid.coords(point);
         self.grid.for_adjacent(&c, |cell| {
-            for j in self.grid.cell_start[cell]..self.grid.cell_start[cell + 1] {
+            for j in self.grid.cell_range(cell) {
                 f(j);
             }
         });
     }
-}
-
-/// Stable counting sort of particle indices by cell key; fills `cell_start`.
-fn counting_sort(keys: &[usize], n_cells: usize, cell_start: &mut Vec<usize>) -> Vec<usize> {
-    let mut count = vec![0usize; n_cells + 1];
-    for &k in keys {
-        count[k + 1] += 1;
-    }
-    for c in 0..n_cells {
-        count[c + 1] += count[c];
-    }
-    *cell_start = count.clone();
-    let mut order = vec![0usize; keys.len()];
-    for (i, &k) in keys.iter().enumerate() {
-        order[count[k]] = i;
-        count[k] += 1;
-    }
-    order
-}
-
-fn gather_lists<const D: usize>(
-    particles: &Particles<D>,
-    domain: &Domain<D>,
-    grid: &Grid<D>,
-    radius: f64,
-) -> Vec<Vec<u32>> {
-    let r2 = radius * radius;
-    (0..particles.len())
-        .into_par_iter()
-        .map(|i| {
-            let xi = &particles.x[i];
-            let wall_i = particles.kind[i] == Kind::Wall;
-            let mut list = Vec::with_capacity(64);
-            grid.for_adjacent(&grid.coords(xi), |cell| {
-                for j in grid.cell_start[cell]..grid.cell_start[cell + 1] {
-                    if j == i || (wall_i && particles.kind[j] == Kind::Wall) {
-                        continue;
-                    }
-                    if domain.separation(xi, &particles.x[j]).norm_squared() < r2 {
-                        list.push(j as u32);
-                    }
-                }
-            });
-            list
-        })
-        .collect()
 }
 
 #[cfg(test)]
@@ -377,7 +337,7 @@ mod tests {
                 })
                 .map(|j| j as u32)
                 .collect();
-            let mut got = list.of(i).to_vec();
+            let mut got: Vec<u32> = list.of(i).map(|j| j as u32).collect();
             brute.sort_unstable();
             got.sort_unstable();
             assert_eq!(got, brute, "particle {i}");
@@ -425,7 +385,7 @@ mod tests {
                     })
                     .map(|j| j as u32)
                     .collect();
-                let mut got = list.of(i).to_vec();
+                let mut got: Vec<u32> = list.of(i).map(|j| j as u32).collect();
                 brute.sort_unstable();
                 got.sort_unstable();
                 assert_eq!(got, brute, "radius {}, particle {i}", support + skin);
@@ -443,7 +403,7 @@ mod tests {
         let (list, _) = NeighbourList::build(&mut p, &Domain::open(), 0.05, 0.01);
         let cells: usize = list.grid.dims.iter().product();
         assert!(
-            cells <= CELLS_PER_PARTICLE * 200 + CELLS_ALLOWANCE,
+            cells <= grid::CELLS_PER_PARTICLE * 200 + grid::CELLS_ALLOWANCE,
             "{cells} cells"
         );
         for i in 0..p.len() {
@@ -451,7 +411,7 @@ mod tests {
                 .filter(|&j| j != i && !(p.kind[i] == Kind::Wall && p.kind[j] == Kind::Wall))
                 .filter(|&j| (p.x[i] - p.x[j]).norm() < 0.06)
                 .count();
-            assert_eq!(list.of(i).len(), brute, "particle {i}");
+            assert_eq!(list.of(i).count(), brute, "particle {i}");
         }
     }
 
@@ -462,13 +422,54 @@ mod tests {
         assert!((s[0] + 0.02).abs() < 1e-12 && (s[1] - 0.3).abs() < 1e-12);
     }
 
+    /// Rows list fluid neighbours before walls, and culling keeps exactly the pairs
+    /// within the culling radius at the current positions.
     #[test]
-    fn rebuild_is_requested_after_half_a_skin() {
+    fn culling_keeps_the_pairs_within_its_radius() {
+        let mut p = random_set::<2>(3000, 13);
+        let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), [true, false]);
+        let (mut list, _) = NeighbourList::build(&mut p, &domain, 0.05, 0.03);
+        for i in 0..p.len() {
+            assert!(list
+                .fluid(i)
+                .iter()
+                .all(|&j| p.kind[j as usize] == Kind::Fluid));
+            assert!(list
+                .walls(i)
+                .iter()
+                .all(|&j| p.kind[j as usize] == Kind::Wall));
+        }
+        let mut rng = SmallRng::seed_from_u64(14);
+        for x in p.x.iter_mut() {
+            *x += Vector::<2>::from_fn(|_, _| 0.005 * (rng.random::<f64>() - 0.5));
+            domain.wrap(x);
+        }
+        list.cull(&p.x, &domain, 0.06);
+        for i in 0..p.len() {
+            let mut brute: Vec<u32> = (0..p.len())
+                .filter(|&j| {
+                    j != i
+                        && !(p.kind[i] == Kind::Wall && p.kind[j] == Kind::Wall)
+                        && domain.separation(&p.x[i], &p.x[j]).norm() < 0.06
+                })
+                .map(|j| j as u32)
+                .collect();
+            let mut got: Vec<u32> = list.of(i).map(|j| j as u32).collect();
+            brute.sort_unstable();
+            got.sort_unstable();
+            assert_eq!(got, brute, "particle {i}");
+        }
+        let (listed, active) = list.mean_neighbours();
+        assert!(active < 0.7 * listed, "{active} of {listed}");
+    }
+
+    #[test]
+    fn displacement_since_the_build() {
         let mut p = random_set::<2>(200, 7);
         let domain = Domain::open();
         let (list, _) = NeighbourList::build(&mut p, &domain, 0.1, 0.02);
-        assert!(!list.needs_rebuild(&p.x, &domain, 0.0));
+        assert_eq!(list.max_displacement(&p.x, &domain), 0.0);
         p.x[5][0] += 0.011;
-        assert!(list.needs_rebuild(&p.x, &domain, 0.0));
+        assert!((list.max_displacement(&p.x, &domain) - 0.011).abs() < 1e-12);
     }
 }

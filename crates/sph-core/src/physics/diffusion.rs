@@ -15,6 +15,19 @@
 
 use crate::particles::Vector;
 
+/// The geometry of one pair, computed once in the pair loop and shared by its terms.
+#[derive(Debug, Clone, Copy)]
+pub struct Pair<'a, const D: usize> {
+    /// `x_i - x_j`.
+    pub x_ij: &'a Vector<D>,
+    pub r: f64,
+    pub r2: f64,
+    /// `1/(r² + η²)`.
+    pub inv_r2_reg: f64,
+    /// `W'(r)/r`.
+    pub f: f64,
+}
+
 /// One density-diffusion variant; `NoDiffusion` makes the whole term vanish at compile time.
 pub trait DensityDiffusion<const D: usize>: Copy + Send + Sync + 'static {
     /// False for [`NoDiffusion`]: the pair loop then drops the term.
@@ -23,19 +36,15 @@ pub trait DensityDiffusion<const D: usize>: Copy + Send + Sync + 'static {
     const NEEDS_GRADIENT: bool = false;
     /// The coefficient δ.
     fn delta(&self) -> f64;
-    /// `ψ_ij · ∇_i W_ij` for the pair with separation `x_ij = x_i - x_j`,
-    /// `r2 = |x_ij|²`, `r2_reg = r² + η²` and `f = W'(r)/r`.
-    #[allow(clippy::too_many_arguments)]
+    /// `ψ_ij · ∇_i W_ij` for the pair `pair` (gradients ⟨∇ρ⟩^L of i and j when the
+    /// variant needs them).
     fn psi_dot_grad(
         &self,
         rho_i: f64,
         rho_j: f64,
         grad_i: &Vector<D>,
         grad_j: &Vector<D>,
-        x_ij: &Vector<D>,
-        r2: f64,
-        r2_reg: f64,
-        f: f64,
+        pair: &Pair<D>,
     ) -> f64;
 }
 
@@ -69,17 +78,7 @@ impl<const D: usize> DensityDiffusion<D> for NoDiffusion {
         0.0
     }
     #[inline(always)]
-    fn psi_dot_grad(
-        &self,
-        _: f64,
-        _: f64,
-        _: &Vector<D>,
-        _: &Vector<D>,
-        _: &Vector<D>,
-        _: f64,
-        _: f64,
-        _: f64,
-    ) -> f64 {
+    fn psi_dot_grad(&self, _: f64, _: f64, _: &Vector<D>, _: &Vector<D>, _: &Pair<D>) -> f64 {
         0.0
     }
 }
@@ -95,13 +94,10 @@ impl<const D: usize> DensityDiffusion<D> for MolteniColagrossi {
         rho_j: f64,
         _: &Vector<D>,
         _: &Vector<D>,
-        _: &Vector<D>,
-        r2: f64,
-        r2_reg: f64,
-        f: f64,
+        q: &Pair<D>,
     ) -> f64 {
         // (ρj-ρi)(-x_ij)·x_ij f / r² = -(ρj-ρi) f r²/r²_reg
-        -(rho_j - rho_i) * f * r2 / r2_reg
+        -(rho_j - rho_i) * q.f * q.r2 * q.inv_r2_reg
     }
 }
 
@@ -116,13 +112,10 @@ impl<const D: usize> DensityDiffusion<D> for Ferrari {
         rho_j: f64,
         _: &Vector<D>,
         _: &Vector<D>,
-        _: &Vector<D>,
-        r2: f64,
-        _: f64,
-        f: f64,
+        q: &Pair<D>,
     ) -> f64 {
         // (ρj-ρi)(-x_ij)·x_ij f/(2h r) = -(ρj-ρi) f r/(2h)
-        -(rho_j - rho_i) * f * r2.sqrt() / (2.0 * self.h)
+        -(rho_j - rho_i) * q.f * q.r / (2.0 * self.h)
     }
 }
 
@@ -138,14 +131,11 @@ impl<const D: usize> DensityDiffusion<D> for DeltaSph {
         rho_j: f64,
         grad_i: &Vector<D>,
         grad_j: &Vector<D>,
-        x_ij: &Vector<D>,
-        r2: f64,
-        r2_reg: f64,
-        f: f64,
+        q: &Pair<D>,
     ) -> f64 {
         // [(ρj-ρi) + ½(gi+gj)·x_ij] (-x_ij)·x_ij f / r²
-        let jump = rho_j - rho_i + 0.5 * (grad_i + grad_j).dot(x_ij);
-        -jump * f * r2 / r2_reg
+        let jump = rho_j - rho_i + 0.5 * (grad_i + grad_j).dot(q.x_ij);
+        -jump * q.f * q.r2 * q.inv_r2_reg
     }
 }
 
@@ -159,26 +149,33 @@ mod tests {
         let gi = Vector::<2>::new(0.3, -1.2);
         let gj = Vector::<2>::new(-0.7, 0.4);
         let x = Vector::<2>::new(0.013, -0.021);
+        let mx = -x;
         let r2 = x.norm_squared();
-        let f = -17.0;
+        let pair = |x_ij, reg: f64| Pair {
+            x_ij,
+            r: r2.sqrt(),
+            r2,
+            inv_r2_reg: 1.0 / (r2 * reg),
+            f: -17.0,
+        };
         let check = |a: f64, b: f64| assert!((a - b).abs() < 1e-12 * a.abs().max(1.0), "{a} {b}");
         let mc = MolteniColagrossi { delta: 0.1 };
         check(
-            mc.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &x, r2, r2 * 1.1, f),
-            -mc.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &-x, r2, r2 * 1.1, f),
+            mc.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &pair(&x, 1.1)),
+            -mc.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &pair(&mx, 1.1)),
         );
         let fe = Ferrari {
             delta: 0.1,
             h: 0.02,
         };
         check(
-            fe.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &x, r2, r2, f),
-            -fe.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &-x, r2, r2, f),
+            fe.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &pair(&x, 1.0)),
+            -fe.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &pair(&mx, 1.0)),
         );
         let ds = DeltaSph { delta: 0.1 };
         check(
-            ds.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &x, r2, r2, f),
-            -ds.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &-x, r2, r2, f),
+            ds.psi_dot_grad(1000.0, 1003.0, &gi, &gj, &pair(&x, 1.0)),
+            -ds.psi_dot_grad(1003.0, 1000.0, &gj, &gi, &pair(&mx, 1.0)),
         );
     }
 
@@ -192,14 +189,17 @@ mod tests {
         let rho = |x: &Vector<2>| 1000.0 + g.dot(x);
         let x_ij = xi - xj;
         let r2 = x_ij.norm_squared();
+        let pair = Pair {
+            x_ij: &x_ij,
+            r: r2.sqrt(),
+            r2,
+            inv_r2_reg: 1.0 / r2,
+            f: -3.0,
+        };
         let ds = DeltaSph { delta: 0.1 };
-        let v = ds.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &x_ij, r2, r2, -3.0);
+        let v = ds.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &pair);
         assert!(v.abs() < 1e-10, "{v}");
         let mc = MolteniColagrossi { delta: 0.1 };
-        assert!(
-            mc.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &x_ij, r2, r2, -3.0)
-                .abs()
-                > 0.01
-        );
+        assert!(mc.psi_dot_grad(rho(&xi), rho(&xj), &g, &g, &pair).abs() > 0.01);
     }
 }

@@ -74,8 +74,6 @@ pub fn detect<const D: usize, K: Kernel>(
             let xi = particles.x[i];
             let neighbours = || {
                 list.of(i)
-                    .iter()
-                    .map(|&j| j as usize)
                     .map(move |j| (j, domain.separation(&particles.x[j], &xi)))
                     .filter(|(_, x_ji)| x_ji.norm() < support)
             };
@@ -112,8 +110,7 @@ pub fn detect<const D: usize, K: Kernel>(
             particles.kind[i] == Kind::Fluid
                 && (out.on_surface[i]
                     || out.lambda[i] <= INTERIOR_LAMBDA
-                    || list.of(i).iter().any(|&j| {
-                        let j = j as usize;
+                    || list.of(i).any(|j| {
                         out.on_surface[j]
                             && domain.separation(&particles.x[j], &particles.x[i]).norm() < support
                     }))

@@ -53,10 +53,12 @@ pub fn guarded_inverse<const D: usize>(b: &SMatrix<f64, D, D>) -> SMatrix<f64, D
     inv / det
 }
 
-/// Fills `grad` with ⟨∇ρ⟩^L for every fluid particle (zero for walls).
+/// Fills `grad` with ⟨∇ρ⟩^L for every fluid particle (zero for walls); `volume[j]` is
+/// `m_j/ρ_j`.
 pub fn density_gradient<const D: usize, K: Kernel>(
     kernel: &K,
     particles: &Particles<D>,
+    volume: &[f64],
     list: &NeighbourList<D>,
     domain: &Domain<D>,
     grad: &mut Vec<Vector<D>>,
@@ -71,11 +73,10 @@ pub fn density_gradient<const D: usize, K: Kernel>(
         let rho_i = particles.rho[i];
         let mut b = SMatrix::<f64, D, D>::zeros();
         let mut sum = Vector::<D>::zeros();
-        for &j in list.of(i) {
-            let j = j as usize;
+        for j in list.of(i) {
             let x_ij = domain.separation(&xi, &particles.x[j]);
             let f = kernel.dw_over_r(x_ij.norm());
-            let vj = particles.mass[j] / particles.rho[j];
+            let vj = volume[j];
             let grad_w = x_ij * (f * vj);
             // (x_j - x_i) ⊗ ∇W V_j = -x_ij ⊗ ∇W V_j
             b -= x_ij * grad_w.transpose();
@@ -123,7 +124,8 @@ mod tests {
         let kernel = WendlandC2::new(h, D);
         let (list, _) = NeighbourList::build(&mut p, &domain, kernel.radius(), 0.0);
         let mut grad = Vec::new();
-        density_gradient(&kernel, &p, &list, &domain, &mut grad);
+        let volume: Vec<f64> = (0..p.len()).map(|i| p.volume(i)).collect();
+        density_gradient(&kernel, &p, &volume, &list, &domain, &mut grad);
         let size = n as f64 * dx;
         let (mut inside, mut cut) = (0.0f64, 0.0f64);
         for (x, g) in p.x.iter().zip(&grad) {

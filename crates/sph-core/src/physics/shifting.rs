@@ -51,8 +51,7 @@ pub fn displacements<const D: usize, K: Kernel>(
             }
             let xi = particles.x[i];
             let mut sum = Vector::<D>::zeros();
-            for &j in list.of(i) {
-                let j = j as usize;
+            for j in list.of(i) {
                 let x_ij = domain.separation(&xi, &particles.x[j]);
                 let r = x_ij.norm();
                 let w = kernel.w(r);

@@ -16,7 +16,7 @@ use crate::boundary::extrapolate_walls;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
-use crate::physics::diffusion::DensityDiffusion;
+use crate::physics::diffusion::{DensityDiffusion, Pair};
 use crate::physics::eos::LinearEos;
 use crate::physics::free_surface::{self, FreeSurface};
 use crate::physics::kernel::Kernel;
@@ -85,7 +85,8 @@ pub struct Physics<const D: usize> {
 pub trait Model<const D: usize>: Send + Sync {
     /// Fills `rates` at the current state: pressure from the EOS, wall extrapolation,
     /// the δ-SPH gradient pre-pass (only if the diffusion needs it and `with_diffusion`),
-    /// then the pair loop. `rates.drho_diff` is written only when `with_diffusion`.
+    /// then the pair loop. `rates.drho_diff` is written only when `with_diffusion`, and
+    /// so are the powers of the energy budget when the scheme carries one.
     fn evaluate(
         &mut self,
         particles: &mut Particles<D>,
@@ -122,13 +123,10 @@ pub trait Model<const D: usize>: Send + Sync {
         dx: f64,
         cfl_ma: f64,
     ) -> Vec<Vector<D>>;
-    /// Viscous and diffusive powers at the state of the last `evaluate` call.
-    fn powers(
-        &self,
-        particles: &Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-    ) -> Powers;
+    /// The viscous, diffusive and wall powers at the state of the last evaluation with
+    /// diffusion (the first of each step), computed in its pair loop; `None` unless the
+    /// scheme was built with the energy budget.
+    fn last_powers(&self) -> Option<Powers>;
     /// Kernel value `W(r)`.
     fn w(&self, r: f64) -> f64;
     /// Kernel support radius R.
@@ -148,11 +146,17 @@ pub struct Scheme<const D: usize, K, Df, V> {
     diffusion_scale: f64,
     /// `η² = 0.01 h²` regularising `1/r²`.
     eta2: f64,
+    /// `V_j = m_j/ρ_j` of every particle, refreshed at each evaluation.
+    volume: Vec<f64>,
     /// ⟨∇ρ⟩^L, allocated only when the diffusion needs it.
     grad: Vec<Vector<D>>,
     /// Tensile instability control (Sun et al. 2018): per particle, whether it is inside
     /// the fluid (not on or near the free surface); `None` when the control is off.
     interior: Option<Vec<bool>>,
+    /// Whether the energy budget's powers are computed (in the evaluations with
+    /// diffusion), and their last values.
+    budget: bool,
+    powers: Option<Powers>,
 }
 
 /// Per-particle pair sums (before the prefactors).
@@ -165,12 +169,22 @@ struct Sums<const D: usize> {
     viscous: Vector<D>,
     /// Σ ψ_ij·∇W V_j over fluid neighbours
     diffusion: f64,
+    /// Σ_w p_w ∇W V_w over wall neighbours (for the wall power)
+    wall_pressure: Vector<D>,
     /// Whether any fluid particle lies within the kernel support
     fluid_in_reach: bool,
 }
 
+/// One fluid particle's rates and its share of the powers.
+struct Row<const D: usize> {
+    drho: f64,
+    drho_diff: f64,
+    du: Vector<D>,
+}
+
 impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D, K, Df, V> {
-    pub fn new(kernel: K, diffusion: Df, viscosity: V, physics: Physics<D>) -> Self {
+    /// The scheme; `budget` asks for the powers of the energy budget.
+    pub fn new(kernel: K, diffusion: Df, viscosity: V, physics: Physics<D>, budget: bool) -> Self {
         let h = kernel.h();
         Self {
             kernel,
@@ -179,20 +193,25 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             physics,
             diffusion_scale: diffusion.delta() * h * physics.eos.c0,
             eta2: 0.01 * h * h,
+            volume: Vec::new(),
             grad: Vec::new(),
             interior: None,
+            budget,
+            powers: None,
         }
     }
 
-    /// The pair sums of fluid particle i; the diffusion sum only when `DIFF`.
+    /// The pair sums of fluid particle i: its fluid neighbours, then its walls. The
+    /// diffusion sum only when `DIFF`, the wall pressure sum only when `BUDGET`.
     #[inline(always)]
-    fn sums<const DIFF: bool>(
+    fn sums<const DIFF: bool, const BUDGET: bool>(
         &self,
         i: usize,
         p: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     ) -> Sums<D> {
+        let vol = &self.volume;
         let xi = p.x[i];
         let ui = p.u[i];
         let (pi, rho_i) = (p.p[i], p.rho[i]);
@@ -202,7 +221,6 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             Some(interior) if pi < 0.0 && interior[i] => -pi,
             _ => pi,
         };
-
         let zero = Vector::<D>::zeros();
         let grad_i = if DIFF && Df::NEEDS_GRADIENT {
             self.grad[i]
@@ -214,28 +232,28 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             pressure: zero,
             viscous: zero,
             diffusion: 0.0,
+            wall_pressure: zero,
             fluid_in_reach: false,
         };
-        for &j in list.of(i) {
+        for &j in list.fluid(i) {
             let j = j as usize;
             let x_ij = domain.separation(&xi, &p.x[j]);
             let r2 = x_ij.norm_squared();
-            let f = self.kernel.dw_over_r(r2.sqrt());
-            let vj = p.mass[j] / p.rho[j];
-            let grad_w = x_ij * (f * vj);
-            s.divergence += (p.u[j] - ui).dot(&grad_w);
-            let fluid_j = p.kind[j] == Kind::Fluid;
+            let r = r2.sqrt();
+            let f = self.kernel.dw_over_r(r);
+            let grad_w = x_ij * (f * vol[j]);
+            let du = p.u[j] - ui;
+            s.divergence += du.dot(&grad_w);
             s.pressure += grad_w * (p.p[j] + pi_pair);
-            s.fluid_in_reach |= fluid_j && f != 0.0;
+            s.fluid_in_reach |= f != 0.0;
+            let inv_r2_reg = if V::ACTIVE || (DIFF && Df::ACTIVE) {
+                1.0 / (r2 + self.eta2)
+            } else {
+                0.0
+            };
             if V::ACTIVE {
-                let (uv_j, weight) = if fluid_j {
-                    (p.u[j], 1.0)
-                } else {
-                    (p.u_wall_visc[j], self.physics.wall_viscous_weight)
-                };
                 // π_ij = (u_j-u_i)·(x_j-x_i)/(r²+η²) = -(u_j-u_i)·x_ij/(r²+η²)
-                let pi_ij = -(uv_j - ui).dot(&x_ij) / (r2 + self.eta2);
-                s.viscous += grad_w * (pi_ij * weight);
+                s.viscous -= grad_w * (du.dot(&x_ij) * inv_r2_reg);
             }
             if DIFF && Df::ACTIVE {
                 let grad_j = if Df::NEEDS_GRADIENT {
@@ -243,23 +261,43 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
                 } else {
                     zero
                 };
-                let psi = self.diffusion.psi_dot_grad(
-                    rho_i,
-                    p.rho[j],
-                    &grad_i,
-                    &grad_j,
-                    &x_ij,
+                let pair = Pair {
+                    x_ij: &x_ij,
+                    r,
                     r2,
-                    r2 + self.eta2,
+                    inv_r2_reg,
                     f,
-                );
-                s.diffusion += psi * vj * (fluid_j as u8 as f64);
+                };
+                let psi = self
+                    .diffusion
+                    .psi_dot_grad(rho_i, p.rho[j], &grad_i, &grad_j, &pair);
+                s.diffusion += psi * vol[j];
+            }
+        }
+        let no_slip = V::ACTIVE && self.physics.wall_viscous_weight != 0.0;
+        for &j in list.walls(i) {
+            let j = j as usize;
+            let x_ij = domain.separation(&xi, &p.x[j]);
+            let r2 = x_ij.norm_squared();
+            let f = self.kernel.dw_over_r(r2.sqrt());
+            let grad_w = x_ij * (f * vol[j]);
+            s.divergence += (p.u[j] - ui).dot(&grad_w);
+            s.pressure += grad_w * (p.p[j] + pi_pair);
+            if BUDGET {
+                s.wall_pressure += grad_w * p.p[j];
+            }
+            if no_slip {
+                let pi_ij = -(p.u_wall_visc[j] - ui).dot(&x_ij) / (r2 + self.eta2);
+                s.viscous += grad_w * (pi_ij * self.physics.wall_viscous_weight);
             }
         }
         if !s.fluid_in_reach {
             // a lone particle: only walls are within reach, and they push it, never
             // pull it, nor stretch it below ρ0 (see `boundary`)
             s.pressure = self.wall_sum(i, p, list, domain, |p_w| (p_w + pi).max(0.0));
+            if BUDGET {
+                s.wall_pressure = s.pressure - self.wall_sum(i, p, list, domain, |_| pi);
+            }
             if rho_i <= self.physics.eos.rho0 {
                 s.divergence = s.divergence.min(0.0);
             }
@@ -267,13 +305,14 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         s
     }
 
-    fn pair_loop<const DIFF: bool>(
+    /// The rates of every particle (zero for walls) and, when `BUDGET`, the powers.
+    fn pair_loop<const DIFF: bool, const BUDGET: bool>(
         &self,
         particles: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
         rates: &mut Rates<D>,
-    ) {
+    ) -> Powers {
         let g = self.physics.gravity;
         let k = self.viscosity.k();
         let scale = 2.0 * self.diffusion_scale;
@@ -283,26 +322,55 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             .zip(rates.drho_diff.par_iter_mut())
             .zip(rates.du.par_iter_mut())
             .enumerate()
-            .for_each(|(i, ((drho, drho_diff), du))| {
+            .map(|(i, ((drho, drho_diff), du))| {
                 if particles.kind[i] != Kind::Fluid {
                     (*drho, *du) = (0.0, Vector::zeros());
                     if DIFF {
                         *drho_diff = 0.0;
                     }
-                    return;
+                    return Powers::default();
                 }
-                let s = self.sums::<DIFF>(i, particles, list, domain);
-                let rho_i = particles.rho[i];
-                *drho = -rho_i * s.divergence;
+                let s = self.sums::<DIFF, BUDGET>(i, particles, list, domain);
+                let row = self.row::<DIFF>(i, particles, &s, g, k, scale);
+                (*drho, *du) = (row.drho, row.du);
                 if DIFF {
-                    *drho_diff = scale * s.diffusion;
+                    *drho_diff = row.drho_diff;
                 }
-                let mut a = g - s.pressure / rho_i;
-                if V::ACTIVE {
-                    a += s.viscous * (k / rho_i);
+                if BUDGET {
+                    let (m, rho, u) = (particles.mass[i], particles.rho[i], particles.u[i]);
+                    Powers {
+                        viscous: m * u.dot(&s.viscous) * k / rho,
+                        diffusive: m * particles.p[i] / (rho * rho) * row.drho_diff,
+                        wall: -m / rho * u.dot(&s.wall_pressure),
+                    }
+                } else {
+                    Powers::default()
                 }
-                *du = a;
-            });
+            })
+            .reduce(Powers::default, Powers::add)
+    }
+
+    /// Continuity, its diffusive part and momentum of fluid particle i from its sums.
+    #[inline(always)]
+    fn row<const DIFF: bool>(
+        &self,
+        i: usize,
+        p: &Particles<D>,
+        s: &Sums<D>,
+        g: Vector<D>,
+        k: f64,
+        scale: f64,
+    ) -> Row<D> {
+        let rho_i = p.rho[i];
+        let mut du = g - s.pressure / rho_i;
+        if V::ACTIVE {
+            du += s.viscous * (k / rho_i);
+        }
+        Row {
+            drho: -rho_i * s.divergence,
+            drho_diff: if DIFF { scale * s.diffusion } else { 0.0 },
+            du,
+        }
     }
 
     /// `Σ_w P(p_w) ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
@@ -314,50 +382,50 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         domain: &Domain<D>,
         pair_pressure: impl Fn(f64) -> f64,
     ) -> Vector<D> {
-        list.of(i)
+        list.walls(i)
             .iter()
-            .map(|&j| j as usize)
-            .filter(|&j| p.kind[j] == Kind::Wall)
-            .map(|j| {
+            .map(|&j| {
+                let j = j as usize;
                 let x_ij = domain.separation(&p.x[i], &p.x[j]);
                 let f = self.kernel.dw_over_r(x_ij.norm());
-                x_ij * (f * pair_pressure(p.p[j]) * p.mass[j] / p.rho[j])
+                x_ij * (f * pair_pressure(p.p[j]) * self.volume[j])
             })
             .sum()
     }
 
-    /// The part of the wall pressure force on fluid particle i that the continuity
-    /// equation does not balance, whose power is the wall power `P_W`: `Σ_w p_w ∇_iW_iw
-    /// V_w`, or for a lone particle (as found by [`Self::sums`]) `Σ_w (max(p_w + p_i, 0)
-    /// - p_i) ∇_iW_iw V_w`.
-    fn wall_force(
-        &self,
-        i: usize,
-        p: &Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-        lone: bool,
-    ) -> Vector<D> {
-        let pi = p.p[i];
-        if lone {
-            self.wall_sum(i, p, list, domain, |p_w| (p_w + pi).max(0.0) - pi)
-        } else {
-            self.wall_sum(i, p, list, domain, |p_w| p_w)
-        }
-    }
-
-    fn update_pressure(&self, particles: &mut Particles<D>) {
-        let eos = self.physics.eos;
-        particles
-            .p
+    /// Fluid pressure from the EOS and every particle's volume `m/ρ`.
+    fn update_pressure_and_volume(&mut self, particles: &mut Particles<D>) {
+        fluid_pressure(particles, &self.physics.eos);
+        self.volume.resize(particles.len(), 0.0);
+        self.volume
             .par_iter_mut()
+            .zip(particles.mass.par_iter())
             .zip(particles.rho.par_iter())
-            .zip(particles.kind.par_iter())
-            .for_each(|((p, &rho), &kind)| {
-                if kind == Kind::Fluid {
-                    *p = eos.pressure(rho);
-                }
-            });
+            .for_each(|((v, &m), &rho)| *v = m / rho);
+    }
+}
+
+/// `p_i = p(ρ_i)` for every fluid particle.
+fn fluid_pressure<const D: usize>(particles: &mut Particles<D>, eos: &LinearEos) {
+    particles
+        .p
+        .par_iter_mut()
+        .zip(particles.rho.par_iter())
+        .zip(particles.kind.par_iter())
+        .for_each(|((p, &rho), &kind)| {
+            if kind == Kind::Fluid {
+                *p = eos.pressure(rho);
+            }
+        });
+}
+
+impl Powers {
+    fn add(self, other: Self) -> Self {
+        Self {
+            viscous: self.viscous + other.viscous,
+            diffusive: self.diffusive + other.diffusive,
+            wall: self.wall + other.wall,
+        }
     }
 }
 
@@ -373,16 +441,34 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         with_diffusion: bool,
     ) {
         rates.resize(particles.len());
-        self.update_pressure_field(particles, list, domain);
-        if with_diffusion && Df::ACTIVE {
-            if Df::NEEDS_GRADIENT {
-                let mut grad = std::mem::take(&mut self.grad);
-                density_gradient(&self.kernel, particles, list, domain, &mut grad);
-                self.grad = grad;
+        self.update_pressure_and_volume(particles);
+        let ph = self.physics;
+        extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
+        // the walls' densities changed with their pressures
+        for &w in list.wall_particles() {
+            self.volume[w] = particles.mass[w] / particles.rho[w];
+        }
+        if with_diffusion && Df::NEEDS_GRADIENT {
+            let mut grad = std::mem::take(&mut self.grad);
+            density_gradient(
+                &self.kernel,
+                particles,
+                &self.volume,
+                list,
+                domain,
+                &mut grad,
+            );
+            self.grad = grad;
+        }
+        match (with_diffusion && Df::ACTIVE, with_diffusion && self.budget) {
+            (true, true) => {
+                self.powers = Some(self.pair_loop::<true, true>(particles, list, domain, rates))
             }
-            self.pair_loop::<true>(particles, list, domain, rates);
-        } else {
-            self.pair_loop::<false>(particles, list, domain, rates);
+            (true, false) => _ = self.pair_loop::<true, false>(particles, list, domain, rates),
+            (false, true) => {
+                self.powers = Some(self.pair_loop::<false, true>(particles, list, domain, rates))
+            }
+            (false, false) => _ = self.pair_loop::<false, false>(particles, list, domain, rates),
         }
     }
 
@@ -392,7 +478,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     ) {
-        self.update_pressure(particles);
+        fluid_pressure(particles, &self.physics.eos);
         let ph = self.physics;
         extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
     }
@@ -422,43 +508,8 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         shifting::displacements(&self.kernel, dx, particles, list, domain, surface, cfl_ma)
     }
 
-    fn powers(
-        &self,
-        particles: &Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-    ) -> Powers {
-        let k = self.viscosity.k();
-        let scale = 2.0 * self.diffusion_scale;
-        let has_grad = !Df::NEEDS_GRADIENT || self.grad.len() == particles.len();
-        (0..particles.len())
-            .into_par_iter()
-            .filter(|&i| particles.kind[i] == Kind::Fluid)
-            .map(|i| {
-                let s = if Df::ACTIVE && has_grad {
-                    self.sums::<true>(i, particles, list, domain)
-                } else {
-                    self.sums::<false>(i, particles, list, domain)
-                };
-                let (m, rho, p) = (particles.mass[i], particles.rho[i], particles.p[i]);
-                Powers {
-                    viscous: m * particles.u[i].dot(&s.viscous) * k / rho,
-                    diffusive: m * p / (rho * rho) * scale * s.diffusion,
-                    wall: -m / rho
-                        * particles.u[i].dot(&self.wall_force(
-                            i,
-                            particles,
-                            list,
-                            domain,
-                            !s.fluid_in_reach,
-                        )),
-                }
-            })
-            .reduce(Powers::default, |a, b| Powers {
-                viscous: a.viscous + b.viscous,
-                diffusive: a.diffusive + b.diffusive,
-                wall: a.wall + b.wall,
-            })
+    fn last_powers(&self) -> Option<Powers> {
+        self.powers
     }
 
     fn w(&self, r: f64) -> f64 {

@@ -55,9 +55,10 @@ fn with_diffusion<const D: usize, K: Kernel, Df: DensityDiffusion<D>>(
     kernel: K,
     diffusion: Df,
 ) -> Box<dyn Model<D>> {
+    let budget = case.diagnostics.energy_budget;
     match viscosity_k(case, &physics) {
-        None => finish(physics, kernel, diffusion, Inviscid),
-        Some(k) => finish(physics, kernel, diffusion, Viscous { k }),
+        None => finish(physics, kernel, diffusion, Inviscid, budget),
+        Some(k) => finish(physics, kernel, diffusion, Viscous { k }, budget),
     }
 }
 
@@ -66,8 +67,9 @@ fn finish<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity>(
     kernel: K,
     diffusion: Df,
     viscosity: V,
+    budget: bool,
 ) -> Box<dyn Model<D>> {
-    Box::new(Scheme::new(kernel, diffusion, viscosity, physics))
+    Box::new(Scheme::new(kernel, diffusion, viscosity, physics, budget))
 }
 
 /// The viscous constant K, or `None` when the case has no viscous term.

@@ -33,7 +33,7 @@ impl<const D: usize> Simulation<D> {
             case_toml,
             particles: self.particles.clone(),
             list_positions: self.list.reference_positions().to_vec(),
-            skin: self.list.skin,
+            skin: self.list.skin(),
             time: self.time,
             dt: self.dt,
             counters: self.counters,

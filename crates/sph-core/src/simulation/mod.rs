@@ -26,9 +26,9 @@ use rayon::prelude::*;
 /// The smallest skin of the neighbour lists, as a fraction of the kernel support.
 const MIN_SKIN: f64 = 0.1;
 
-/// The skin is sized to 2.5 times the reach of the coming step, so that the lists
-/// last a few steps.
-const SKIN_OVER_REACH: f64 = 2.5;
+/// The skin is sized to this many times the reach of a step, so that the lists last
+/// a few steps (the steps cull them to what they use).
+const SKIN_OVER_REACH: f64 = 6.0;
 
 /// Counters for throughput reports.
 #[derive(Debug, Clone, Copy, Default)]
@@ -41,14 +41,36 @@ pub struct Counters {
 }
 
 /// The running energy budget of SCHEME.md §10 (only when the case asks for it):
-/// `E_k + E_p + E_c + removed_energy - dissipated` stays at its initial value.
+/// `E_k + E_p + E_c + removed_energy - work()` stays at its initial value.
+///
+/// The powers come from the first evaluation of each step (at its start state), so
+/// the trapezoidal rule closes an interval at the start of the next step; until then
+/// the last step counts by its left rectangle, `pending · P(start)`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct EnergyBudget {
-    /// `∫ (P_V + P_D + P_W) dt` so far (trapezoidal rule over steps).
+    /// `∫ (P_V + P_D + P_W) dt` by the trapezoidal rule up to the start of the last step.
     pub dissipated: f64,
     /// `E_k + E_p + E_c` the removed particles carried out of the domain.
     pub removed_energy: f64,
+    /// The powers at the start of the last step.
     pub last: Powers,
+    /// The length of the last step, whose closing power is not known yet (0 before the
+    /// first step).
+    pub pending: f64,
+}
+
+impl EnergyBudget {
+    /// `∫ (P_V + P_D + P_W) dt` through the end of the last step.
+    pub fn work(&self) -> f64 {
+        self.dissipated + self.pending * self.last.total()
+    }
+
+    /// Closes the pending interval with the powers `now` at the start of a step.
+    fn advance(&mut self, now: Powers) {
+        self.dissipated += 0.5 * self.pending * (self.last.total() + now.total());
+        self.last = now;
+        self.pending = 0.0;
+    }
 }
 
 /// A running case; its state is read through methods and changed by stepping (or by
@@ -183,8 +205,9 @@ impl<const D: usize> Simulation<D> {
         &self.control
     }
 
-    /// Mean listed neighbours per particle (fluid and walls).
-    pub fn mean_neighbours(&self) -> f64 {
+    /// Mean neighbours per particle (fluid and walls): in the lists, and in the rows
+    /// the last step used.
+    pub fn mean_neighbours(&self) -> (f64, f64) {
         self.list.mean_neighbours()
     }
 
@@ -260,8 +283,8 @@ impl<const D: usize> Simulation<D> {
     /// acceleration that sizes the list skin and the energy-budget powers.
     pub fn state_changed(&mut self) {
         self.last_acceleration = self.rates().max_acceleration();
-        if let Some(b) = self.budget.as_mut() {
-            b.last = self.model.powers(&self.particles, &self.list, &self.domain);
+        if let (Some(b), Some(now)) = (self.budget.as_mut(), self.model.last_powers()) {
+            (b.last, b.pending) = (now, 0.0);
         }
     }
 
@@ -288,19 +311,29 @@ impl<const D: usize> Simulation<D> {
 
     /// Advances one step, shortened to land on `limit` when it would pass it.
     pub fn step_until(&mut self, limit: f64) -> Result<()> {
+        // the reach of this step, at least a twentieth of the support (a flow at rest
+        // still starts to move within the step)
         let speed = self.max_speed();
-        let reach = self.reach(self.control.acoustic(), speed);
+        let support = self.model.support_radius();
+        let reach = self
+            .reach(self.control.acoustic(), speed)
+            .max(0.5 * MIN_SKIN * support);
         let mut moved = self.list.max_displacement(&self.particles.x, &self.domain);
-        if moved + reach > 0.5 * self.list.skin {
+        if moved + reach > 0.5 * self.list.skin() {
             self.rebuild(reach);
             moved = 0.0;
         }
+        // no particle moves farther than `room` in this step (Δt is bounded below for
+        // it when the skin was capped): the step uses the pairs within R + 2 room
+        let room = reach.min(0.5 * self.list.skin() - moved);
+        self.list
+            .cull(&self.particles.x, &self.domain, support + 2.0 * room);
         if self.case.scheme.tensile_control {
             let surface = self.free_surface();
             let interior = surface.near.iter().map(|near| !near).collect();
             self.model.set_tensile_control(Some(interior));
         }
-        let dt_lists = self.dt_within(0.5 * self.list.skin - moved, speed);
+        let dt_lists = self.dt_within(room, speed);
         let mut cx = Context {
             model: self.model.as_mut(),
             list: &self.list,
@@ -310,6 +343,9 @@ impl<const D: usize> Simulation<D> {
             .integrator
             .begin(&mut self.particles, &mut cx)
             .max_acceleration();
+        if let (Some(b), Some(now)) = (self.budget.as_mut(), cx.model.last_powers()) {
+            b.advance(now);
+        }
         let mut dt = self.control.dt(a_max).min(dt_lists);
         let remaining = limit - self.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
@@ -326,14 +362,10 @@ impl<const D: usize> Simulation<D> {
         self.time += dt;
         self.counters.steps += 1;
         self.counters.evaluations += self.integrator.evaluations_per_step() as u64;
-        self.remove_escaped();
-        if self.budget.is_some() {
-            self.rates();
-            let now = self.model.powers(&self.particles, &self.list, &self.domain);
-            let b = self.budget.as_mut().unwrap();
-            b.dissipated += 0.5 * dt * (b.last.total() + now.total());
-            b.last = now;
+        if let Some(b) = self.budget.as_mut() {
+            b.pending = dt;
         }
+        self.remove_escaped();
         self.check_stability()
     }
 

@@ -42,7 +42,7 @@ impl<const D: usize> Simulation<D> {
         }
         if let Some(b) = self.budget {
             v.extend([
-                b.dissipated,
+                b.work(),
                 b.last.viscous,
                 b.last.diffusive,
                 b.last.wall,

@@ -5,6 +5,7 @@
 //! original index so that outputs can be matched across snapshots.
 
 use nalgebra::SVector;
+use rayon::prelude::*;
 
 /// A position, velocity or force in `D` dimensions.
 pub type Vector<const D: usize> = SVector<f64, D>;
@@ -63,6 +64,15 @@ impl<const D: usize> Particles<D> {
     /// `V_i = m_i / ρ_i`.
     pub fn volume(&self, i: usize) -> f64 {
         self.mass[i] / self.rho[i]
+    }
+
+    /// `V_i = m_i/ρ_i` of every particle.
+    pub fn volumes(&self) -> Vec<f64> {
+        self.mass
+            .par_iter()
+            .zip(self.rho.par_iter())
+            .map(|(&m, &rho)| m / rho)
+            .collect()
     }
 
     pub fn n_fluid(&self) -> usize {

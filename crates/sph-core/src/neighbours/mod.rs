@@ -210,11 +210,12 @@ impl<const D: usize> NeighbourList<D> {
                     let xi = &x[i];
                     let keep = |from: usize, to: usize, out: &mut [u32]| -> u32 {
                         let mut m = 0;
+                        // branch-free: every entry is written, the kept ones advance
                         for &j in &indices[from..to] {
-                            if domain.separation(xi, &x[j as usize]).norm_squared() < r2 {
-                                out[m] = j;
-                                m += 1;
-                            }
+                            out[m] = j;
+                            m += usize::from(
+                                domain.separation(xi, &x[j as usize]).norm_squared() < r2,
+                            );
                         }
                         m as u32
                     };

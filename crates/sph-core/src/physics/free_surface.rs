@@ -55,12 +55,66 @@ fn min_eigenvalue<const D: usize>(b: &SMatrix<f64, D, D>) -> f64 {
     }
 }
 
+/// The neighbour sums one particle's classification needs: `B_i` and `∇Γ_i`.
+#[derive(Debug, Clone, Copy)]
+pub struct Moments<const D: usize> {
+    pub b: SMatrix<f64, D, D>,
+    pub grad_gamma: Vector<D>,
+}
+
+impl<const D: usize> Moments<D> {
+    pub fn zero() -> Self {
+        Self {
+            b: SMatrix::zeros(),
+            grad_gamma: Vector::zeros(),
+        }
+    }
+
+    /// Adds neighbour j at `x_ji = x_j - x_i` with `∇_i W_ij V_j = grad_w`.
+    #[inline(always)]
+    pub fn add(&mut self, x_ji: &Vector<D>, grad_w: &Vector<D>) {
+        self.b += x_ji * grad_w.transpose();
+        self.grad_gamma += grad_w;
+    }
+}
+
 /// Detects the free surface at the current state.
 pub fn detect<const D: usize, K: Kernel>(
     kernel: &K,
     particles: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
+) -> FreeSurface<D> {
+    let volume = particles.volumes();
+    let moments: Vec<Moments<D>> = (0..particles.len())
+        .into_par_iter()
+        .map(|i| {
+            let mut m = Moments::zero();
+            if particles.kind[i] != Kind::Fluid {
+                return m;
+            }
+            let xi = particles.x[i];
+            for j in list.of(i) {
+                // ∇_i W_ij = x_ij W'(r)/r = -x_ji W'(r)/r, zero beyond the support
+                let x_ji = domain.separation(&particles.x[j], &xi);
+                m.add(&x_ji, &(-x_ji * (kernel.dw_over_r(x_ji.norm()) * volume[j])));
+            }
+            m
+        })
+        .collect();
+    classify(kernel, particles, list, domain, &moments)
+}
+
+/// Classifies every fluid particle from its [`Moments`] (walls get `λ = 0`, no normal,
+/// and are neither on nor near the surface). Only the particles with
+/// `0.2 < λ <= 0.75` scan their neighbours; `near` is spread from the surface
+/// particles to the fluid within their support (the lists are symmetric).
+pub fn classify<const D: usize, K: Kernel>(
+    kernel: &K,
+    particles: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    moments: &[Moments<D>],
 ) -> FreeSurface<D> {
     let (support, h) = (kernel.radius(), kernel.h());
     let scale = support / (2.0 * h);
@@ -71,30 +125,21 @@ pub fn detect<const D: usize, K: Kernel>(
             if particles.kind[i] != Kind::Fluid {
                 return (0.0, Vector::zeros(), false);
             }
-            let xi = particles.x[i];
-            let neighbours = || {
-                list.of(i)
-                    .map(move |j| (j, domain.separation(&particles.x[j], &xi)))
-                    .filter(|(_, x_ji)| x_ji.norm() < support)
-            };
-            let mut b = SMatrix::<f64, D, D>::zeros();
-            let mut grad_gamma = Vector::<D>::zeros();
-            for (j, x_ji) in neighbours() {
-                // ∇_i W_ij = x_ij W'(r)/r = -x_ji W'(r)/r
-                let grad_w = -x_ji * (kernel.dw_over_r(x_ji.norm()) * particles.volume(j));
-                b += x_ji * grad_w.transpose();
-                grad_gamma += grad_w;
-            }
-            let lambda = min_eigenvalue(&b);
-            let nu = -(guarded_inverse(&b) * grad_gamma);
+            let m = &moments[i];
+            let lambda = min_eigenvalue(&m.b);
+            let nu = -(guarded_inverse(&m.b) * m.grad_gamma);
             let n = if nu.norm() > 0.0 {
                 nu.normalize()
             } else {
                 Vector::zeros()
             };
+            let xi = particles.x[i];
             let on_surface = lambda <= SURFACE_LAMBDA
                 || (lambda <= INTERIOR_LAMBDA
-                    && !neighbours().any(|(_, x_ji)| occupies(&x_ji, &n, near, reach)));
+                    && !list.of(i).any(|j| {
+                        let x_ji = domain.separation(&particles.x[j], &xi);
+                        x_ji.norm() < support && occupies(&x_ji, &n, near, reach)
+                    }));
             (lambda, n, on_surface)
         })
         .collect();
@@ -105,17 +150,16 @@ pub fn detect<const D: usize, K: Kernel>(
         out.on_surface.push(s);
     }
     out.near = (0..particles.len())
-        .into_par_iter()
-        .map(|i| {
-            particles.kind[i] == Kind::Fluid
-                && (out.on_surface[i]
-                    || out.lambda[i] <= INTERIOR_LAMBDA
-                    || list.of(i).any(|j| {
-                        out.on_surface[j]
-                            && domain.separation(&particles.x[j], &particles.x[i]).norm() < support
-                    }))
-        })
+        .map(|i| particles.kind[i] == Kind::Fluid && out.lambda[i] <= INTERIOR_LAMBDA)
         .collect();
+    for i in (0..particles.len()).filter(|&i| out.on_surface[i]) {
+        for &j in list.fluid(i) {
+            let j = j as usize;
+            if domain.separation(&particles.x[j], &particles.x[i]).norm() < support {
+                out.near[j] = true;
+            }
+        }
+    }
     out
 }
 

@@ -21,7 +21,7 @@ use crate::physics::eos::LinearEos;
 use crate::physics::free_surface::{self, FreeSurface};
 use crate::physics::kernel::Kernel;
 use crate::physics::renormalisation::density_gradient;
-use crate::physics::shifting;
+use crate::physics::shifting::{self, Shift};
 use crate::physics::viscosity::Viscosity;
 use rayon::prelude::*;
 
@@ -113,16 +113,16 @@ pub trait Model<const D: usize>: Send + Sync {
     /// Sets the particles (current order) where tensile instability control applies, or
     /// `None` to switch it off.
     fn set_tensile_control(&mut self, interior: Option<Vec<bool>>);
-    /// δ+-SPH shifting displacements (see [`crate::physics::shifting`]), `cfl_ma = U_max Δt/h`.
+    /// δ+-SPH shifting displacements and the free surface at the current state (see
+    /// [`crate::physics::shifting`]), `cfl_ma = U_max Δt/h`.
     fn shift(
         &self,
         particles: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
-        surface: &FreeSurface<D>,
         dx: f64,
         cfl_ma: f64,
-    ) -> Vec<Vector<D>>;
+    ) -> Shift<D>;
     /// The viscous, diffusive and wall powers at the state of the last evaluation with
     /// diffusion (the first of each step), computed in its pair loop; `None` unless the
     /// scheme was built with the energy budget.
@@ -501,11 +501,10 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         particles: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
-        surface: &FreeSurface<D>,
         dx: f64,
         cfl_ma: f64,
-    ) -> Vec<Vector<D>> {
-        shifting::displacements(&self.kernel, dx, particles, list, domain, surface, cfl_ma)
+    ) -> Shift<D> {
+        shifting::shift(&self.kernel, dx, particles, list, domain, cfl_ma)
     }
 
     fn last_powers(&self) -> Option<Powers> {

@@ -243,28 +243,31 @@ impl<const D: usize> Simulation<D> {
         2.0 * b / (v + (v * v + 4.0 * a * b).sqrt()).max(f64::MIN_POSITIVE)
     }
 
-    /// Moves the fluid particles by the δ+-SPH shifting of a step of length `dt`.
-    fn shift(&mut self, dt: f64) {
-        let surface = self.free_surface();
+    /// Moves the fluid particles by the δ+-SPH shifting of the last step (none before
+    /// the first) and returns the free surface it was shaped by.
+    fn shift(&mut self) -> FreeSurface<D> {
+        let dt = self.dt;
         let cfl_ma = self.max_speed() * dt / self.case.h();
-        let dr = self.model.shift(
+        let shift = self.model.shift(
             &self.particles,
             &self.list,
             &self.domain,
-            &surface,
             self.case.dx(),
             cfl_ma,
         );
-        let domain = self.domain;
-        self.particles
-            .x
-            .par_iter_mut()
-            .zip(dr.par_iter())
-            .for_each(|(x, d)| {
-                *x += d;
-                domain.wrap(x);
-            });
-        self.shift_velocity = Some(dr.iter().map(|d| d / dt).collect());
+        if dt > 0.0 {
+            let domain = self.domain;
+            self.particles
+                .x
+                .par_iter_mut()
+                .zip(shift.dr.par_iter())
+                .for_each(|(x, d)| {
+                    *x += d;
+                    domain.wrap(x);
+                });
+            self.shift_velocity = Some(shift.dr.iter().map(|d| d / dt).collect());
+        }
+        shift.surface
     }
 
     /// Rebuilds lists (and reorders particles by cell) with a skin covering `reach`.
@@ -273,7 +276,11 @@ impl<const D: usize> Simulation<D> {
         let skin = (MIN_SKIN * support)
             .max(SKIN_OVER_REACH * reach)
             .min(self.max_skin);
-        let (list, _) = NeighbourList::build(&mut self.particles, &self.domain, support, skin);
+        let (list, order) =
+            NeighbourList::build(&mut self.particles, &self.domain, support, skin);
+        if let Some(v) = self.shift_velocity.as_mut() {
+            crate::particles::permute(v, &order);
+        }
         self.list = list;
         self.counters.rebuilds += 1;
     }
@@ -328,8 +335,13 @@ impl<const D: usize> Simulation<D> {
         let room = reach.min(0.5 * self.list.skin() - moved);
         self.list
             .cull(&self.particles.x, &self.domain, support + 2.0 * room);
-        if self.case.scheme.tensile_control {
-            let surface = self.free_surface();
+        // the shift of the last step, and tensile control from the same free surface
+        let surface = if self.shift_velocity.is_some() {
+            Some(self.shift())
+        } else {
+            self.case.scheme.tensile_control.then(|| self.free_surface())
+        };
+        if let Some(surface) = surface.filter(|_| self.case.scheme.tensile_control) {
             let interior = surface.near.iter().map(|near| !near).collect();
             self.model.set_tensile_control(Some(interior));
         }
@@ -354,9 +366,6 @@ impl<const D: usize> Simulation<D> {
         self.integrator.advance(dt, &mut self.particles, &mut cx);
         let domain = self.domain;
         self.particles.x.par_iter_mut().for_each(|x| domain.wrap(x));
-        if self.shift_velocity.is_some() {
-            self.shift(dt);
-        }
         self.last_acceleration = a_max;
         self.dt = dt;
         self.time += dt;

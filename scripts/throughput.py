@@ -1,80 +1,190 @@
 #!/usr/bin/env python3
-"""End-to-end throughput of sph-cli on the 2D dam break (delta-SPH, Wendland C2, h/dx = 1.33).
+"""Throughput of sph-cli: every speed figure of the README comes from this script.
 
-Part 1: three resolutions (about 5k, 20k and 40k fluid particles), a fixed number of
-steps, with 1 and 2 threads: particles, neighbours per particle, steps, force
-evaluations, particle-steps/s and particle-evaluations/s.
-Part 2: wall time to reach t*sqrt(g/H) = 2 at about 20k particles with RK4 (CFL 1.5)
-and with the symplectic scheme (CFL 0.15, its largest stable value for the dam break).
+Parts (run one with its name, or all by default):
+  evals     particle-evaluations/s of the 2D dam break (δ-SPH, RK4, output off) at about
+            5k, 20k and 40k fluid particles with 1 and 2 threads, and at 20k with
+            h/Δx = 2; with --baseline BIN the same runs of another build, alternated.
+  variants  the cost of a step of each scheme at 20k particles, 2 threads, relative to
+            δ-SPH: plain WCSPH, δ-SPH with the energy budget, δ+-SPH, δ+-SPH with tensile
+            control, δ-SPH with the symplectic scheme.
+  solution  wall time of examples/dam_break_2d.toml as it stands (output on), and of
+            the same case with the symplectic scheme at CFL 0.15; with --baseline BIN
+            the baseline's time too, alternated.
+  scaling   particle-steps/s, bytes per particle (peak resident memory over all
+            particles) and peak memory from 10³ to 10⁶ fluid particles, 2D and 3D
+            dam breaks, 2 threads.
 
-Usage: python3 scripts/throughput.py [--steps N]   (build first: cargo build --release)
+Each figure is the median of --repeat runs (default 3; scaling runs once).
+Usage: python3 scripts/throughput.py [part ...] [--repeat N] [--baseline BIN]
+Build first: cargo build --release.
 """
 import argparse
 import math
 import os
 import re
+import statistics
 import subprocess
 import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 CLI = ROOT / "target" / "release" / "sph-cli"
-BASE = (ROOT / "examples" / "dam_break_2d.toml").read_text()
+EXAMPLE = ROOT / "examples" / "dam_break_2d.toml"
+BASE_2D = EXAMPLE.read_text()
+BASE_3D = (ROOT / "examples" / "dam_break_3d.toml").read_text()
 H, G = 0.6, 9.81
 
 
-def case_text(n_fluid, end=None, max_steps=None, integrator=None, cfl=None):
-    dx = math.sqrt(2 * H * H / n_fluid)
-    text = re.sub(r"^spacing = .*$", f"spacing = {dx:.6f}", BASE, flags=re.M)
-    text = re.sub(r"^output_interval = .*$", "output_interval = 0.0", text, flags=re.M)
+def set_key(text, key, value, table):
+    """Sets `key = value` in the case text, adding it under `[table]` when absent."""
+    if re.search(rf"^{key} = .*$", text, flags=re.M):
+        return re.sub(rf"^{key} = .*$", f"{key} = {value}", text, flags=re.M)
+    return text.replace(f"[{table}]", f"[{table}]\n{key} = {value}", 1)
+
+
+def quiet(text):
+    """The case without output: no snapshots, probes or energy budget."""
+    text = set_key(text, "output_interval", "0.0", "time")
     text = re.sub(r"^probes = .*$", "", text, flags=re.M)
-    text = re.sub(r"^energy = true$", "energy = false", text, flags=re.M)
-    if end is not None:
-        text = re.sub(r"^end = .*$", f"end = {end}", text, flags=re.M)
+    return set_key(text, "energy", "false", "diagnostics")
+
+
+def case_2d(n_fluid, max_steps=None, **scheme):
+    """The 2D dam break (2H × H column) at about `n_fluid` fluid particles, output off."""
+    dx = math.sqrt(2 * H * H / n_fluid)
+    text = quiet(set_key(BASE_2D, "spacing", f"{dx:.6g}", "particles"))
     if max_steps is not None:
-        text = text.replace("[time]", f"[time]\nmax_steps = {max_steps}")
-    if integrator is not None:
-        text = re.sub(r'^integrator = .*$', f'integrator = "{integrator}"', text, flags=re.M)
-    if cfl is not None:
-        text = re.sub(r"^cfl = .*$", f"cfl = {cfl}", text, flags=re.M)
+        text = set_key(text, "max_steps", str(max_steps), "time")
+    for key, value in scheme.items():
+        table = "particles" if key == "h_over_dx" else "scheme"
+        text = set_key(text, key, value, table)
     return text
 
 
-def run(text, threads):
+def case_3d(n_fluid, max_steps):
+    """The 3D dam break (0.6 × 0.3 × 0.3 m column) at about `n_fluid` fluid particles."""
+    dx = (0.6 * 0.3 * 0.3 / n_fluid) ** (1 / 3)
+    text = quiet(set_key(BASE_3D, "spacing", f"{dx:.6g}", "particles"))
+    return set_key(text, "max_steps", str(max_steps), "time")
+
+
+def run(text, threads=2, cli=CLI):
+    """Runs a case; the summary's figures and the peak resident memory [bytes]."""
     with tempfile.TemporaryDirectory() as tmp:
         case = Path(tmp) / "case.toml"
         case.write_text(text)
         env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
-        out = subprocess.run([str(CLI), "run", str(case), "--out", str(Path(tmp) / "out"), "--quiet"],
-                             env=env, capture_output=True, text=True, check=True).stdout
-    grab = lambda pattern: float(re.search(pattern, out).group(1))
+        with open(Path(tmp) / "stdout", "w") as out:
+            proc = subprocess.Popen([str(cli), "run", str(case), "--out", str(Path(tmp) / "out"),
+                                     "--quiet"], env=env, stdout=out, stderr=subprocess.STDOUT)
+            _, status, usage = os.wait4(proc.pid, 0)
+        text_out = (Path(tmp) / "stdout").read_text()
+        if status != 0:
+            raise SystemExit(f"{cli} failed:\n{text_out}")
+    grab = lambda pattern: float(re.search(pattern, text_out).group(1))
     return {
         "fluid": int(grab(r"particles\s+(\d+) fluid")),
-        "neighbours": grab(r"neighbours\s+([\d.]+)"),
+        "walls": int(grab(r"fluid, (\d+) wall")),
         "steps": int(grab(r"in (\d+) steps")),
         "wall": grab(r"wall time\s+([\d.]+)"),
         "psteps": grab(r"throughput\s+([\d.e+]+) particle-steps"),
         "pevals": grab(r"([\d.e+]+) particle-evaluations"),
+        "peak": usage.ru_maxrss * 1024,
     }
 
 
+def median_runs(texts, repeat, threads=2):
+    """Runs every (label, text, cli) `repeat` times, alternating; the median wall times
+    and the last run of each."""
+    walls = {label: [] for label, _, _ in texts}
+    last = {}
+    for _ in range(repeat):
+        for label, text, cli in texts:
+            r = run(text, threads, cli)
+            walls[label].append(r["wall"])
+            last[label] = r
+    return {label: (statistics.median(w), last[label]) for label, w in walls.items()}
+
+
+def evals(args):
+    print("particle-evaluations/s, 2D dam break, δ-SPH, RK4, Wendland C2, output off")
+    clis = [("now", CLI)] + ([("baseline", Path(args.baseline))] if args.baseline else [])
+    print(f"{'fluid':>7} {'h/dx':>5} {'threads':>7} " + " ".join(f"{c:>12}" for c, _ in clis)
+          + ("  ratio" if args.baseline else ""))
+    for n, h_dx, threads in ((5_000, 1.33, 1), (5_000, 1.33, 2), (20_000, 1.33, 1),
+                             (20_000, 1.33, 2), (40_000, 1.33, 2), (20_000, 2.0, 2)):
+        text = case_2d(n, max_steps=args.steps, h_over_dx=h_dx)
+        res = median_runs([(c, text, cli) for c, cli in clis], args.repeat, threads)
+        rate = {c: r["steps"] * 4 * r["fluid"] / wall for c, (wall, r) in res.items()}
+        line = f"{res['now'][1]['fluid']:>7} {h_dx:>5} {threads:>7} " + " ".join(
+            f"{rate[c]:>12.3e}" for c, _ in clis)
+        if args.baseline:
+            line += f"  {rate['now'] / rate['baseline']:.2f}"
+        print(line)
+
+
+def variants(args):
+    print("cost of a step relative to δ-SPH (RK4), about 20k fluid particles, 2 threads")
+    n = 20_000
+    cases = [
+        ("δ-SPH", case_2d(n, args.steps)),
+        ("plain WCSPH", case_2d(n, args.steps, diffusion='"none"')),
+        ("δ-SPH + energy budget",
+         set_key(case_2d(n, args.steps), "energy", "true", "diagnostics")),
+        ("δ+-SPH", case_2d(n, args.steps, shifting='"delta_plus"')),
+        ("δ+-SPH + tensile control",
+         case_2d(n, args.steps, shifting='"delta_plus"', tensile_control="true")),
+    ]
+    res = median_runs([(label, text, CLI) for label, text in cases], args.repeat)
+    ref = res["δ-SPH"][0] / res["δ-SPH"][1]["steps"]
+    for label, (wall, r) in res.items():
+        per_step = wall / r["steps"]
+        print(f"  {label:<26} {1e3 * per_step:7.2f} ms/step  ×{per_step / ref:.2f}")
+
+
+def solution(args):
+    print(f"wall time of {EXAMPLE.relative_to(ROOT)} to its end (output on), 2 threads")
+    symplectic = set_key(set_key(BASE_2D, "integrator", '"symplectic"', "scheme"),
+                         "cfl", "0.15", "scheme")
+    texts = [("now, RK4", BASE_2D, CLI), ("now, symplectic CFL 0.15", symplectic, CLI)]
+    if args.baseline:
+        texts.append(("baseline, RK4", BASE_2D, Path(args.baseline)))
+    res = median_runs(texts, args.repeat)
+    for label, (wall, r) in res.items():
+        print(f"  {label:<26} {wall:7.2f} s, {r['steps']} steps")
+    rk4 = res["now, RK4"][0]
+    print(f"  symplectic / RK4: {res['now, symplectic CFL 0.15'][0] / rk4:.2f}")
+    if args.baseline:
+        print(f"  now / baseline: {rk4 / res['baseline, RK4'][0]:.3f}")
+
+
+def scaling(args):
+    print("particle-steps/s (fluid particles × steps / stepping wall time), 2 threads")
+    print(f"{'dim':>3} {'fluid':>9} {'walls':>9} {'steps':>6} {'p-steps/s':>10} "
+          f"{'bytes/particle':>15} {'peak MiB':>9}")
+    for dim, case in ((2, case_2d), (3, case_3d)):
+        for n, steps in ((1e3, 400), (1e4, 100), (1e5, 20), (1e6, 4)):
+            r = run(case(int(n), max_steps=steps))
+            total = r["fluid"] + r["walls"]
+            print(f"{dim:>3} {r['fluid']:>9} {r['walls']:>9} {r['steps']:>6} "
+                  f"{r['psteps']:>10.3e} {r['peak'] / total:>15.0f} {r['peak'] / 2**20:>9.0f}")
+
+
 def main():
+    parts = {"evals": evals, "variants": variants, "solution": solution, "scaling": scaling}
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--steps", type=int, default=200)
+    ap.add_argument("parts", nargs="*", help=" ".join(parts))
+    ap.add_argument("--steps", type=int, default=200, help="steps of the fixed-step runs")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--baseline", help="another sph-cli build to compare with")
     args = ap.parse_args()
-    print(f"{'fluid':>7} {'neigh':>6} {'threads':>7} {'steps':>6} {'evals':>6} {'wall s':>7} "
-          f"{'p-steps/s':>10} {'p-evals/s':>10}")
-    for n in (5_000, 20_000, 40_000):
-        for threads in (1, 2):
-            r = run(case_text(n, max_steps=args.steps), threads)
-            print(f"{r['fluid']:>7} {r['neighbours']:>6.1f} {threads:>7} {r['steps']:>6} {4 * r['steps']:>6} "
-                  f"{r['wall']:>7.2f} {r['psteps']:>10.3e} {r['pevals']:>10.3e}")
-    t_end = 2.0 / math.sqrt(G / H)
-    print(f"\nwall time to t*sqrt(g/H) = 2 (t = {t_end:.4f} s), about 20k particles, 2 threads:")
-    for integrator, cfl in (("rk4", 1.5), ("symplectic", 0.15)):
-        r = run(case_text(20_000, end=t_end, integrator=integrator, cfl=cfl), 2)
-        print(f"  {integrator:<10} CFL {cfl}: {r['steps']} steps, {r['wall']:.2f} s, "
-              f"{r['pevals']:.3e} particle-evaluations/s")
+    unknown = [name for name in args.parts if name not in parts]
+    if unknown:
+        ap.error(f"unknown part {unknown[0]!r}: expected one of {', '.join(parts)}")
+    for name in args.parts or parts:
+        parts[name](args)
+        print()
 
 
 if __name__ == "__main__":

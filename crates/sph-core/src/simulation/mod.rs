@@ -317,7 +317,14 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Advances one step, shortened to land on `limit` when it would pass it.
+    ///
+    /// The step runs on a thread of the Rayon pool, so that its parallel loops start
+    /// from inside the pool instead of each waking it from outside.
     pub fn step_until(&mut self, limit: f64) -> Result<()> {
+        rayon::scope(|_| self.advance_to(limit))
+    }
+
+    fn advance_to(&mut self, limit: f64) -> Result<()> {
         // the reach of this step, at least a twentieth of the support (a flow at rest
         // still starts to move within the step)
         let speed = self.max_speed();

@@ -240,7 +240,7 @@ def summary(rows):
     return lines
 
 
-DEFAULT_CFL = {"rk4": 1.5, "symplectic": 0.15}
+DEFAULT_CFL = {"rk4": 1.5, "symplectic": 0.25}
 
 
 def headline(rows):

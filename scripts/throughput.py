@@ -59,6 +59,9 @@ def case_2d(n_fluid, max_steps=None, **scheme):
     for key, value in scheme.items():
         table = "particles" if key == "h_over_dx" else "scheme"
         text = set_key(text, key, value, table)
+        if key == "h_over_dx":
+            # wall layers covering the support 2h
+            text = set_key(text, "layers", str(math.ceil(2 * float(value) - 1e-9)), "tank")
     return text
 
 
@@ -131,7 +134,7 @@ def variants(args):
         ("δ-SPH", case_2d(n, args.steps)),
         ("plain WCSPH", case_2d(n, args.steps, diffusion='"none"')),
         ("δ-SPH + energy budget",
-         set_key(case_2d(n, args.steps), "energy", "true", "diagnostics")),
+         set_key(case_2d(n, args.steps), "energy_budget", "true", "diagnostics")),
         ("δ+-SPH", case_2d(n, args.steps, shifting='"delta_plus"')),
         ("δ+-SPH + tensile control",
          case_2d(n, args.steps, shifting='"delta_plus"', tensile_control="true")),

@@ -263,14 +263,8 @@ fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
 /// The displacements of one shift; the free surface that shift detects in its single
 /// pass must be the one the detection on its own finds.
 fn displacements(l: &Layout, cfl_ma: f64) -> Vec<Vector<2>> {
-    let shift = sph_core::physics::shifting::shift(
-        &l.kernel,
-        DX,
-        &l.particles,
-        &l.list,
-        &l.domain,
-        cfl_ma,
-    );
+    let shift =
+        sph_core::physics::shifting::shift(&l.kernel, DX, &l.particles, &l.list, &l.domain, cfl_ma);
     let (a, b) = (&shift.surface, &l.surface);
     assert_eq!(a.on_surface, b.on_surface);
     assert_eq!(a.near, b.near);

@@ -240,6 +240,25 @@ def poiseuille(sim, until):
     return {"error": float(np.sqrt(np.mean((u - poiseuille_exact(y, until)) ** 2)) / 2.5e-5)}
 
 
+# 6b. Start-up Couette flow --------------------------------------------------------------------
+
+def couette_exact(y, t, L=1e-3, nu=1e-6, U=2.5e-5):
+    """u = U y/L - Σ_n 2U (-1)^(n+1)/(nπ) sin(nπy/L) exp(-n²π²νt/L²), from rest at t = 0."""
+    u = U * y / L
+    for n in range(1, 200):
+        u = u - 2 * U * (-1) ** (n + 1) / (n * math.pi) * np.sin(n * math.pi * y / L) \
+            * np.exp(-(n**2) * math.pi**2 * nu * t / L**2)
+    return u
+
+
+def couette(sim, until):
+    """RMS of u_x against the series at t (ν t/L² = t here), relative to the lid speed U."""
+    sim.run(until=until)
+    f = fluid(sim)
+    y, u = sim.positions[f, 1], sim.velocities[f, 0]
+    return {"error": float(np.sqrt(np.mean((u - couette_exact(y, until)) ** 2)) / 2.5e-5)}
+
+
 # 7. Lid-driven cavity -------------------------------------------------------------------------
 
 def ghia(name):

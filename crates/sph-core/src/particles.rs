@@ -114,7 +114,7 @@ pub fn retain<T>(v: &mut Vec<T>, keep: &[bool]) {
 }
 
 /// Gathers `v[order[k]]` into position `k`.
-pub fn permute<T: Copy>(v: &mut Vec<T>, order: &[usize]) {
+pub fn permute<T: Copy + Send + Sync>(v: &mut Vec<T>, order: &[usize]) {
     debug_assert_eq!(v.len(), order.len());
-    *v = order.iter().map(|&k| v[k]).collect();
+    *v = order.par_iter().map(|&k| v[k]).collect();
 }

@@ -383,7 +383,8 @@ pub struct DiagnosticsConfig {
     /// Write E_k, E_p, E_c, their sum and max |Δρ/ρ0|.
     #[serde(default)]
     pub energy: bool,
-    /// Also integrate the viscous and diffusive powers every step (one extra pair loop per step).
+    /// Also integrate the viscous, diffusive and wall powers (SCHEME.md §10), computed in
+    /// the first evaluation of each step.
     #[serde(default)]
     pub energy_budget: bool,
     /// Pressure probes (Shepard interpolation from fluid particles).

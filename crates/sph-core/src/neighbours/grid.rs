@@ -4,6 +4,7 @@
 
 use crate::domain::Domain;
 use crate::particles::Vector;
+use rayon::prelude::*;
 
 #[derive(Debug, Clone)]
 pub(super) struct Grid<const D: usize> {
@@ -94,7 +95,7 @@ impl<const D: usize> Grid<D> {
     /// The grid for positions `x` and the stable order that sorts them by cell.
     pub(super) fn sorted(x: &[Vector<D>], domain: &Domain<D>, radius: f64) -> (Self, Vec<usize>) {
         let mut grid = Grid::new(x, domain, radius);
-        let keys: Vec<usize> = x.iter().map(|p| grid.flat(&grid.coords(p))).collect();
+        let keys: Vec<usize> = x.par_iter().map(|p| grid.flat(&grid.coords(p))).collect();
         let order = counting_sort(&keys, grid.n_cells(), &mut grid.cell_start);
         (grid, order)
     }

@@ -64,6 +64,23 @@ struct ChunkRows {
     indices: Vec<u32>,
 }
 
+/// The chunks' indices one after another in one buffer, copied in parallel.
+fn concatenate(chunks: &[ChunkRows]) -> Vec<u32> {
+    let total: usize = chunks.iter().map(|c| c.indices.len()).sum();
+    let mut indices = vec![0u32; total];
+    let mut parts = Vec::with_capacity(chunks.len());
+    let mut rest = &mut indices[..];
+    for chunk in chunks {
+        let (part, tail) = rest.split_at_mut(chunk.indices.len());
+        parts.push((part, &chunk.indices));
+        rest = tail;
+    }
+    parts
+        .into_par_iter()
+        .for_each(|(part, from)| part.copy_from_slice(from));
+    indices
+}
+
 impl<const D: usize> NeighbourList<D> {
     /// Reorders `particles` by cell and builds the lists with radius `support + skin`.
     /// Returns the permutation: new index k holds old particle `order[k]`.
@@ -146,8 +163,6 @@ impl<const D: usize> NeighbourList<D> {
         start.push(0);
         let mut wall_start = Vec::with_capacity(n);
         let (mut fluid_len, mut wall_len) = (Vec::with_capacity(n), Vec::with_capacity(n));
-        let total: usize = chunks.iter().map(|c| c.indices.len()).sum();
-        let mut indices = Vec::with_capacity(total);
         for chunk in &chunks {
             for &(f, w) in &chunk.counts {
                 let s = start[start.len() - 1];
@@ -156,10 +171,10 @@ impl<const D: usize> NeighbourList<D> {
                 fluid_len.push(f);
                 wall_len.push(w);
             }
-            indices.extend_from_slice(&chunk.indices);
         }
+        let indices = concatenate(&chunks);
         Self {
-            active: indices.clone(),
+            active: indices.par_iter().copied().collect(),
             start,
             wall_start,
             indices,

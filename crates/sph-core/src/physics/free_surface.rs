@@ -97,7 +97,10 @@ pub fn detect<const D: usize, K: Kernel>(
             for j in list.of(i) {
                 // ∇_i W_ij = x_ij W'(r)/r = -x_ji W'(r)/r, zero beyond the support
                 let x_ji = domain.separation(&particles.x[j], &xi);
-                m.add(&x_ji, &(-x_ji * (kernel.dw_over_r(x_ji.norm()) * volume[j])));
+                m.add(
+                    &x_ji,
+                    &(-x_ji * (kernel.dw_over_r(x_ji.norm()) * volume[j])),
+                );
             }
             m
         })

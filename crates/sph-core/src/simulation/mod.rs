@@ -190,6 +190,9 @@ impl<const D: usize> Simulation<D> {
     /// what depends on the state ([`Self::state_changed`]).
     pub fn edit(&mut self, f: impl FnOnce(&mut Particles<D>)) {
         f(&mut self.particles);
+        if let Some(v) = self.shift_velocity.as_mut() {
+            v.resize(self.particles.len(), Vector::zeros());
+        }
         let domain = self.domain;
         self.particles.x.iter_mut().for_each(|x| domain.wrap(x));
         let reach = self.reach(self.control.acoustic(), self.max_speed());
@@ -244,10 +247,11 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Moves the fluid particles by the δ+-SPH shifting of the last step (none before
-    /// the first) and returns the free surface it was shaped by.
-    fn shift(&mut self) -> FreeSurface<D> {
+    /// the first), `speed` their largest speed, and returns the free surface it was
+    /// shaped by.
+    fn shift(&mut self, speed: f64) -> FreeSurface<D> {
         let dt = self.dt;
-        let cfl_ma = self.max_speed() * dt / self.case.h();
+        let cfl_ma = speed * dt / self.case.h();
         let shift = self.model.shift(
             &self.particles,
             &self.list,
@@ -255,17 +259,18 @@ impl<const D: usize> Simulation<D> {
             self.case.dx(),
             cfl_ma,
         );
-        if dt > 0.0 {
+        if let (true, Some(velocity)) = (dt > 0.0, self.shift_velocity.as_mut()) {
             let domain = self.domain;
             self.particles
                 .x
                 .par_iter_mut()
+                .zip(velocity.par_iter_mut())
                 .zip(shift.dr.par_iter())
-                .for_each(|(x, d)| {
+                .for_each(|((x, v), d)| {
                     *x += d;
                     domain.wrap(x);
+                    *v = d / dt;
                 });
-            self.shift_velocity = Some(shift.dr.iter().map(|d| d / dt).collect());
         }
         shift.surface
     }
@@ -276,8 +281,7 @@ impl<const D: usize> Simulation<D> {
         let skin = (MIN_SKIN * support)
             .max(SKIN_OVER_REACH * reach)
             .min(self.max_skin);
-        let (list, order) =
-            NeighbourList::build(&mut self.particles, &self.domain, support, skin);
+        let (list, order) = NeighbourList::build(&mut self.particles, &self.domain, support, skin);
         if let Some(v) = self.shift_velocity.as_mut() {
             crate::particles::permute(v, &order);
         }
@@ -344,9 +348,12 @@ impl<const D: usize> Simulation<D> {
             .cull(&self.particles.x, &self.domain, support + 2.0 * room);
         // the shift of the last step, and tensile control from the same free surface
         let surface = if self.shift_velocity.is_some() {
-            Some(self.shift())
+            Some(self.shift(speed))
         } else {
-            self.case.scheme.tensile_control.then(|| self.free_surface())
+            self.case
+                .scheme
+                .tensile_control
+                .then(|| self.free_surface())
         };
         if let Some(surface) = surface.filter(|_| self.case.scheme.tensile_control) {
             let interior = surface.near.iter().map(|near| !near).collect();

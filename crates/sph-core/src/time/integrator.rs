@@ -77,6 +77,41 @@ pub struct Rk4<const D: usize> {
 }
 
 impl<const D: usize> Rk4<D> {
+    /// Saves the start state `w0` and starts the sums with `Q(w0)`, then moves the state
+    /// to `w0 + c [Q(w0) + D(w0)]`, in one pass.
+    fn first_stage(&mut self, p: &mut Particles<D>, c: f64) {
+        let n = p.len();
+        self.w0.x.resize(n, Vector::zeros());
+        self.acc_x.resize(n, Vector::zeros());
+        self.w0.u.resize(n, Vector::zeros());
+        self.acc_u.resize(n, Vector::zeros());
+        self.w0.rho.resize(n, 0.0);
+        self.acc_rho.resize(n, 0.0);
+        self.diff0.resize(n, 0.0);
+        let (r, kind) = (&self.rates, &p.kind);
+        p.x.par_iter_mut()
+            .zip(p.u.par_iter_mut())
+            .zip(p.rho.par_iter_mut())
+            .zip(self.w0.x.par_iter_mut())
+            .zip(self.w0.u.par_iter_mut())
+            .zip(self.w0.rho.par_iter_mut())
+            .zip(self.acc_x.par_iter_mut())
+            .zip(self.acc_u.par_iter_mut())
+            .zip(self.acc_rho.par_iter_mut())
+            .zip(self.diff0.par_iter_mut())
+            .enumerate()
+            .for_each(
+                |(i, (((((((((x, u), rho), x0), u0), rho0), ax), au), ar), d0))| {
+                    (*x0, *u0, *rho0) = (*x, *u, *rho);
+                    let uk = transport(kind[i], *u);
+                    (*ax, *au, *ar, *d0) = (uk, r.du[i], r.drho[i], r.drho_diff[i]);
+                    *x += uk * c;
+                    *u += r.du[i] * c;
+                    *rho += (r.drho[i] + r.drho_diff[i]) * c;
+                },
+            );
+    }
+
     /// Adds `weight · Q(w_k)` to the sums and moves the state to `w0 + c Q(w_k) + Δt D(w0)·c/Δt`.
     fn stage(&mut self, p: &mut Particles<D>, weight: f64, c: f64) {
         let w0 = &self.w0;
@@ -113,16 +148,7 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
     }
 
     fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
-        let n = p.len();
-        self.w0.save(p);
-        self.diff0.clone_from(&self.rates.drho_diff);
-        self.acc_x.clear();
-        self.acc_x.resize(n, Vector::zeros());
-        self.acc_u.clear();
-        self.acc_u.resize(n, Vector::zeros());
-        self.acc_rho.clear();
-        self.acc_rho.resize(n, 0.0);
-        self.stage(p, 1.0, 0.5 * dt);
+        self.first_stage(p, 0.5 * dt);
         cx.model
             .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
         self.stage(p, 2.0, 0.5 * dt);

@@ -21,8 +21,9 @@ fn worst_crossings(overrides: &[&str]) -> usize {
 /// which the run-up jet reaches at this resolution, so splash particles skim and land
 /// on the wall's top edge), RK4 at CFL 1.5 and the symplectic scheme at its CFL 0.25:
 /// zero crossings. (The example sets CFL 1.5, so the symplectic run sets its own: at
-/// 1.5 it blows up at step 339, which the test once mistook for a pass.) Before walls stopped pulling lone particles (`boundary`), a lone
-/// expanded splash particle sank into the top of the right wall at H/Δx = 20.
+/// 1.5 it blows up at step 339, which the test once mistook for a pass.) Before walls
+/// stopped pulling lone particles (`boundary`), a lone expanded splash particle sank
+/// into the top of the right wall at H/Δx = 20.
 #[test]
 fn dam_break_impact_does_not_cross_the_walls() {
     let rk4 = worst_crossings(&["particles.spacing = 0.02"]);

@@ -232,12 +232,17 @@ def poiseuille_exact(y, t, L=1e-3, nu=1e-6, F=2e-4):
     return u
 
 
-def poiseuille(sim, until):
-    """RMS of u_x against the series at t (ν t/L² = t here), relative to F L²/(8ν)."""
+def profile_error(sim, until, exact, scale):
+    """RMS of u_x(y) against `exact(y, t)` at t = `until`, relative to `scale`."""
     sim.run(until=until)
     f = fluid(sim)
     y, u = sim.positions[f, 1], sim.velocities[f, 0]
-    return {"error": float(np.sqrt(np.mean((u - poiseuille_exact(y, until)) ** 2)) / 2.5e-5)}
+    return {"error": float(np.sqrt(np.mean((u - exact(y, until)) ** 2)) / scale)}
+
+
+def poiseuille(sim, until):
+    """RMS of u_x against the series at t (ν t/L² = t here), relative to F L²/(8ν)."""
+    return profile_error(sim, until, poiseuille_exact, 2.5e-5)
 
 
 # 6b. Start-up Couette flow --------------------------------------------------------------------
@@ -253,10 +258,7 @@ def couette_exact(y, t, L=1e-3, nu=1e-6, U=2.5e-5):
 
 def couette(sim, until):
     """RMS of u_x against the series at t (ν t/L² = t here), relative to the lid speed U."""
-    sim.run(until=until)
-    f = fluid(sim)
-    y, u = sim.positions[f, 1], sim.velocities[f, 0]
-    return {"error": float(np.sqrt(np.mean((u - couette_exact(y, until)) ** 2)) / 2.5e-5)}
+    return profile_error(sim, until, couette_exact, 2.5e-5)
 
 
 # 7. Lid-driven cavity -------------------------------------------------------------------------

@@ -342,24 +342,35 @@ mod tests {
         let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), periodic);
         let support = if D == 2 { 0.06 } else { 0.12 };
         let (list, _) = NeighbourList::build(&mut p, &domain, support, 0.01);
-        let r2 = (support + 0.01f64).powi(2);
+        let total = assert_brute_force(&p, &domain, &list, support + 0.01);
+        assert!(total > 10 * p.len(), "the test set must have many pairs");
+    }
+
+    /// Asserts that every row holds exactly the pairs closer than `radius` (no wall-wall
+    /// pairs), found by testing all pairs; returns the number of pairs listed.
+    fn assert_brute_force<const D: usize>(
+        p: &Particles<D>,
+        domain: &Domain<D>,
+        list: &NeighbourList<D>,
+        radius: f64,
+    ) -> usize {
         let mut total = 0;
         for i in 0..p.len() {
             let mut brute: Vec<u32> = (0..p.len())
                 .filter(|&j| {
                     j != i
                         && !(p.kind[i] == Kind::Wall && p.kind[j] == Kind::Wall)
-                        && domain.separation(&p.x[i], &p.x[j]).norm_squared() < r2
+                        && domain.separation(&p.x[i], &p.x[j]).norm_squared() < radius * radius
                 })
                 .map(|j| j as u32)
                 .collect();
             let mut got: Vec<u32> = list.of(i).map(|j| j as u32).collect();
             brute.sort_unstable();
             got.sort_unstable();
-            assert_eq!(got, brute, "particle {i}");
+            assert_eq!(got, brute, "radius {radius}, particle {i}");
             total += got.len();
         }
-        assert!(total > 10 * p.len(), "the test set must have many pairs");
+        total
     }
 
     #[test]
@@ -391,21 +402,7 @@ mod tests {
             let mut p = random_set::<2>(400, 9);
             let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), [true, true]);
             let (list, _) = NeighbourList::build(&mut p, &domain, support, skin);
-            let r2 = (support + skin) * (support + skin);
-            for i in 0..p.len() {
-                let mut brute: Vec<u32> = (0..p.len())
-                    .filter(|&j| {
-                        j != i
-                            && !(p.kind[i] == Kind::Wall && p.kind[j] == Kind::Wall)
-                            && domain.separation(&p.x[i], &p.x[j]).norm_squared() < r2
-                    })
-                    .map(|j| j as u32)
-                    .collect();
-                let mut got: Vec<u32> = list.of(i).map(|j| j as u32).collect();
-                brute.sort_unstable();
-                got.sort_unstable();
-                assert_eq!(got, brute, "radius {}, particle {i}", support + skin);
-            }
+            assert_brute_force(&p, &domain, &list, support + skin);
         }
     }
 

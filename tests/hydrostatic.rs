@@ -97,7 +97,7 @@ fn wall_pressure_is_hydrostatic_at_the_wall_particles_depth() {
         }
         sim.sync_pressure();
         let p = sim.particles();
-        let reach = 2.0 * 1.33 * 0.05;
+        let reach = sim.case().support();
         let (mut relative, mut of_scale, mut checked) = (0.0f64, 0.0f64, 0);
         for w in (0..p.len()).filter(|&i| p.kind[i] == Kind::Wall) {
             let near_fluid =

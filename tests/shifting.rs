@@ -222,6 +222,8 @@ struct Layout {
 }
 
 const DX: f64 = 0.05;
+/// The default h/Δx, which the layout's case leaves unset.
+const H_OVER_DX: f64 = 2.0;
 
 fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
     use rand::{rngs::SmallRng, Rng, SeedableRng};
@@ -246,7 +248,7 @@ fn layout(n: usize, periodic: bool, jitter: f64) -> Layout {
             * (jitter * DX);
         sim.domain().wrap(x);
     }
-    let kernel = sph_core::physics::kernel::WendlandC2::new(1.33 * DX, 2);
+    let kernel = sph_core::physics::kernel::WendlandC2::new(H_OVER_DX * DX, 2);
     let domain = *sim.domain();
     let (list, _) =
         sph_core::neighbours::NeighbourList::build(&mut particles, &domain, kernel.radius(), 0.0);
@@ -281,9 +283,13 @@ fn displacements(l: &Layout, cfl_ma: f64) -> Vec<Vector<2>> {
 #[test]
 fn shifting_magnitude_follows_sun_et_al() {
     let l = layout(16, true, 0.2);
+    assert!(
+        l.surface.near.iter().all(|&n| !n),
+        "a periodic box has no surface"
+    );
     let cfl_ma = 0.01;
     let dr = displacements(&l, cfl_ma);
-    let h = 1.33 * DX;
+    let h = H_OVER_DX * DX;
     let alpha = 7.0 / (4.0 * std::f64::consts::PI * h * h);
     let w = |r: f64| {
         let q = r / h;
@@ -328,7 +334,7 @@ fn shifting_magnitude_follows_sun_et_al() {
 #[test]
 fn shifting_is_capped_at_a_twentieth_of_h() {
     let l = layout(16, true, 0.2);
-    let h = 1.33 * DX;
+    let h = H_OVER_DX * DX;
     let dr = displacements(&l, 10.0);
     let longest = dr.iter().map(|d| d.norm()).fold(0.0, f64::max);
     let capped = dr
@@ -350,7 +356,7 @@ fn shifting_is_tangential_at_the_surface_and_leaves_splashes_alone() {
     let (list, _) = sph_core::neighbours::NeighbourList::build(
         &mut l.particles,
         &l.domain,
-        2.0 * 1.33 * DX,
+        2.0 * H_OVER_DX * DX,
         0.0,
     );
     l.list = list;

@@ -200,8 +200,8 @@ fn patch_impact_reaches_the_acoustic_pressure_and_delta_sph_removes_the_noise() 
         "δ-SPH: plateau {:.4}, noise {:.4}; standard SPH: plateau {:.4}, noise {:.4}",
         delta.plateau, delta.noise, standard.plateau, standard.noise
     );
-    // Water hammer p = ρ0 c0 U (U/c0 = 0.05). Measured plateau at h/Δx = 50 and 100:
-    // 0.994, 1.019 (δ-SPH).
+    // Water hammer p = ρ0 c0 U (U/c0 = 0.05). Measured plateau at L/Δx = 50 and 100:
+    // 0.994, 1.019 (δ-SPH; the case's h/Δx = 1.33); at h/Δx = 2 1.049, 1.018.
     assert!((delta.plateau - 1.0).abs() < 0.05);
     assert!((standard.plateau - 1.0).abs() < 0.05);
     // At t = 2(h/2)/c0 standard SPH carries checkerboard noise; measured 0.082 against
@@ -258,4 +258,71 @@ fn lid_driven_cavity_approaches_ghia() {
     // and 30 at t = 20 with 10 U (the Δx-convergence of the report); a lid that does not
     // drive leaves the fluid at rest and the error at the profile's own RMS, 0.41.
     assert!(rms < 0.12, "RMS error {rms}");
+}
+
+/// Frequency and amplitude decay rate of the first sloshing mode of
+/// `validation/standing_wave.toml` at `d/Δx = depth_over_dx`, from the kinetic energy,
+/// which peaks twice a period (t = nT/2) and whose peaks decay as exp(-2γt): ω is π
+/// over the spacing of the peaks (a line through their times), γ half the log-slope
+/// of their heights. Each peak is placed by a parabola through the largest sample
+/// near nT/2 and its neighbours (T/80 apart).
+fn standing_wave(depth_over_dx: f64, periods: usize) -> (f64, f64) {
+    use sph_core::geometry::initial_field::standing_wave_frequency;
+    let spacing = format!("particles.spacing = {}", 0.5 / depth_over_dx);
+    let mut sim =
+        Simulation::<2>::new(example_case("validation/standing_wave.toml", &[&spacing])).unwrap();
+    let half = std::f64::consts::PI / standing_wave_frequency(1.0, 0.5, 9.81);
+    let samples = 40;
+    let dt = half / samples as f64;
+    let mut energy = Vec::new();
+    for k in 1..=2 * periods * samples + samples / 2 {
+        run_to(&mut sim, k as f64 * dt);
+        energy.push(sim.energies().kinetic.ln());
+    }
+    let (mut times, mut heights) = (Vec::new(), Vec::new());
+    for n in 1..=2 * periods {
+        let near = n * samples - 1 - samples / 4..n * samples + samples / 4;
+        let j = near
+            .max_by(|&a, &b| energy[a].total_cmp(&energy[b]))
+            .unwrap();
+        let (a, b, c) = (energy[j - 1], energy[j], energy[j + 1]);
+        let shift = 0.5 * (a - c) / (a - 2.0 * b + c);
+        times.push((j + 1) as f64 * dt + shift * dt);
+        heights.push(b - 0.25 * (a - c) * shift);
+    }
+    let index: Vec<f64> = (1..=2 * periods).map(|n| n as f64).collect();
+    let omega = std::f64::consts::PI / slope(&index, &times);
+    (omega, -0.5 * slope(&times, &heights))
+}
+
+/// Least-squares slope of y against x.
+fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn standing_wave_keeps_the_linear_frequency_and_the_viscous_damping() {
+    use sph_core::geometry::initial_field::standing_wave_frequency;
+    let (omega, decay) = standing_wave(20.0, 4);
+    let exact = standing_wave_frequency(1.0, 0.5, 9.81);
+    let viscous = 2.0 * 1e-3 * std::f64::consts::PI.powi(2);
+    println!(
+        "standing wave, d/Δx = 20: ω/ω_linear = {:.4}, γ/2νk² = {:.3}",
+        omega / exact,
+        decay / viscous
+    );
+    assert!(
+        (omega / exact - 1.0).abs() < 0.02,
+        "ω/ω_linear = {}",
+        omega / exact
+    );
+    assert!(
+        (decay / viscous - 1.0).abs() < 0.5,
+        "γ/2νk² = {}",
+        decay / viscous
+    );
 }

@@ -22,8 +22,10 @@ import deltasph as ds  # noqa: E402
 
 HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "dam_break_2d.toml"
+#: Marrone et al. (2011)'s P1 figure, digitised (experiment and δ-SPH), where present
+MARRONE = HERE.parents[2] / "shared" / "refdata" / "dambreak2d_marrone2011_P1.csv"
 H, G, RHO0 = 0.6, 9.81, 1000.0
-P1 = (3.2196, 0.16)
+P1 = (3.2196, 0.12)
 
 
 def arguments():
@@ -85,10 +87,14 @@ def draw_pressure(ax, sim, t_star):
 
 def plot_p1(times, p1, path):
     fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
+    if MARRONE.exists():
+        ref = np.loadtxt(MARRONE, delimiter=",", comments="#", skiprows=5)
+        ax.plot(ref[:, 0], ref[:, 1], "k.", ms=2, label="Buchner (2002), as in Marrone et al.")
+        ax.plot(ref[:, 0], ref[:, 4], "k-", lw=0.8, label="Marrone et al. (2011), H/Δx = 320")
     ax.plot(times, p1, label="deltasph, P1 (Shepard probe)")
     ax.set_xlabel("t·sqrt(g/H)")
     ax.set_ylabel("p / ρ0 g H")
-    ax.set_title("Dam break: pressure on the right wall at y = 0.16 m")
+    ax.set_title("Dam break: pressure on the right wall at y = 0.2H = 0.12 m")
     ax.legend()
     fig.savefig(path, dpi=130)
 

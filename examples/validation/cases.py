@@ -100,16 +100,29 @@ def buchner():
     return data[:, 0], data[:, 1]
 
 
-def dam_break(sim):
-    """P1 signal (t·sqrt(g/H), p/ρ0gH) to t* = 7; errors against Buchner's plateau and rise."""
+def smooth(t, p, width=0.1):
+    """Moving average over `width` in t* (the experimental sensor and noise scale)."""
+    step = t[1] - t[0]
+    k = max(1, int(round(width / step)))
+    return np.convolve(p, np.ones(k) / k, mode="same")
+
+
+def p1_signal(sim, height):
+    """P1 (right wall, y = `height`) as p/ρ0gH every 0.01 t* to t* = 7."""
     H, g, rho0 = 0.6, 9.81, 1000.0
     t_ref = math.sqrt(H / g)
     times = np.arange(0.01, 7.0 + 1e-9, 0.01)
     signal = []
     for t_star in times:
         sim.run(until=t_star * t_ref)
-        signal.append(sim.probe_pressure([3.2196, 0.16])[0] / (rho0 * g * H))
-    signal = np.array(signal)
+        signal.append(sim.probe_pressure([3.2196, height])[0] / (rho0 * g * H))
+    return times, np.array(signal)
+
+
+def dam_break(sim):
+    """P1 signal at the experimental sensor's centre, y = 0.16 m, to t* = 7; errors
+    against Buchner's plateau and rise."""
+    times, signal = p1_signal(sim, 0.16)
     plateau = float(np.mean(signal[(times >= 3.3) & (times <= 5.2)]))
     rise = float(times[np.argmax(signal > 0.1)])
     t_exp, p_exp = buchner()
@@ -121,6 +134,23 @@ def dam_break(sim):
         "rise_time": rise,
         "signal": (times, signal),
     }
+
+
+def marrone():
+    """Marrone et al. (2011)'s P1 figure: t*, experiment, δ-SPH at H/Δx = 40, 80, 320."""
+    return np.loadtxt(REFDATA / "dambreak2d_marrone2011_P1.csv", delimiter=",",
+                      comments="#", skiprows=5)
+
+
+def dam_break_marrone(sim):
+    """P1 at y = 0.2H = 0.12 m, the probe of the published δ-SPH runs, against Marrone et
+    al. (2011)'s δ-SPH at H/Δx = 320: RMS over t* 2.3-7 of the 0.1 t* moving average."""
+    times, signal = p1_signal(sim, 0.12)
+    ref = marrone()
+    window = (times >= 2.3) & (times <= 7.0)
+    diff = smooth(times, signal) - np.interp(times, ref[:, 0], ref[:, 4])
+    plateau = float(np.mean(signal[(times >= 3.3) & (times <= 5.2)]))
+    return {"error": float(np.sqrt(np.mean(diff[window] ** 2))), "plateau": plateau}
 
 
 # 2b. Dam break, Martin & Moyce column: surge front ------------------------------------------
@@ -259,6 +289,46 @@ def couette_exact(y, t, L=1e-3, nu=1e-6, U=2.5e-5):
 def couette(sim, until):
     """RMS of u_x against the series at t (ν t/L² = t here), relative to the lid speed U."""
     return profile_error(sim, until, couette_exact, 2.5e-5)
+
+
+# 6c. Standing wave in a closed tank ------------------------------------------------------------
+
+def standing_wave(sim, periods=4, nu=1e-3, length=1.0, depth=0.5, g=9.81):
+    """Frequency and damping of the first sloshing mode against linear theory: the kinetic
+    energy peaks twice a period and its peaks decay as exp(-4νk²t), so ω is π over the
+    spacing of the peaks (a line through their times) and the amplitude decay γ half the log-slope of their
+    heights. The error is the complex frequency's, |Δω + iΔγ|/ω, against ω² = g k tanh kd
+    and γ = 2νk²."""
+    k = math.pi / length
+    omega = math.sqrt(g * k * math.tanh(k * depth))
+    period = 2.0 * math.pi / omega
+    samples = 40  # per half period
+    times = np.arange(1, periods * 2 * samples + samples // 2) * (period / 2 / samples)
+    energy = []
+    for t in times:
+        sim.run(until=t)
+        energy.append(sim.energies()["kinetic"])
+    energy = np.array(energy)
+    peaks_t, peaks_e = [], []
+    for n in range(1, 2 * periods + 1):
+        i = n * samples - 1  # the sample nearest t = n T/2
+        w = energy[i - samples // 4:i + samples // 4 + 1]
+        j = i - samples // 4 + int(np.argmax(w))
+        a, b, c = np.log(energy[j - 1:j + 2])
+        shift = 0.5 * (a - c) / (a - 2 * b + c)  # parabola through the three samples
+        peaks_t.append(times[j] + shift * (times[1] - times[0]))
+        peaks_e.append(b - 0.25 * (a - c) * shift)
+    peaks_t = np.array(peaks_t)
+    slope, _ = np.polyfit(peaks_t, peaks_e, 1)
+    half_period, _ = np.polyfit(np.arange(1, 2 * periods + 1), peaks_t, 1)
+    got_omega = math.pi / float(half_period)
+    got_decay = -0.5 * float(slope)
+    viscous = 2.0 * nu * k**2
+    return {
+        "error": math.hypot(got_omega - omega, got_decay - viscous) / omega,
+        "period_error": omega / got_omega - 1.0,
+        "decay_over_viscous": got_decay / viscous,
+    }
 
 
 # 7. Lid-driven cavity -------------------------------------------------------------------------

@@ -9,7 +9,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from cases import buchner  # noqa: E402
+from cases import buchner, smooth  # noqa: E402
 from reading import INTRO, READING  # noqa: E402
 
 BUDGET_S = 60.0
@@ -64,13 +64,6 @@ def plot_case(out, case, rows):
     fig.suptitle(case.title)
     fig.savefig(out / f"{case.name}.png", dpi=110)
     plt.close(fig)
-
-
-def smooth(t, p, width=0.1):
-    """Moving average over `width` in t* (the experimental sensor and noise scale)."""
-    step = t[1] - t[0]
-    k = max(1, int(round(width / step)))
-    return np.convolve(p, np.ones(k) / k, mode="same")
 
 
 def fine_p1(signals):

@@ -63,7 +63,7 @@ def test_numpy_values_are_accepted():
     config = example("hydrostatic_2d")
     config["fluid"]["gravity"] = np.array([0.0, -9.81])
     config["particles"]["spacing"] = np.float64(0.025)
-    config["tank"][0]["layers"] = np.int64(3)
+    config["tank"][0]["layers"] = np.int64(4)
     assert ds.Simulation(config).n_fluid == 80 * 40
 
 

@@ -322,10 +322,10 @@ fn check_refuses_unreachable_probes_and_thin_walls() {
     for (edit, expected) in [
         (
             (
-                "probes = [[3.2196, 0.16]]",
-                "probes = [[3.2196, 0.16], [5.0, 5.0]]",
+                "probes = [[3.2196, 0.12], [3.2196, 0.16]]",
+                "probes = [[3.2196, 0.12], [3.2196, 0.16], [5.0, 5.0]]",
             ),
-            "error: diagnostics.probes[1] = [5.0, 5.0]: expected a point inside the domain",
+            "error: diagnostics.probes[2] = [5.0, 5.0]: expected a point inside the domain",
         ),
         (
             ("h_over_dx = 1.33", "h_over_dx = 2.0"),

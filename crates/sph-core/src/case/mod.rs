@@ -78,9 +78,9 @@ mod tests {
         let c = Case::from_toml_str(MINIMAL).unwrap();
         assert_eq!(c.scheme.diffusion, DiffusionChoice::DeltaSph);
         assert_eq!(c.scheme.cfl(), 1.5);
-        assert!((c.h() - 0.0133).abs() < 1e-12);
-        // R = 2h = 2.66 Δx: three layers cover it
-        assert_eq!(c.tank[0].layer_count(&c), 3);
+        assert!((c.h() - 0.02).abs() < 1e-12);
+        // R = 2h = 4 Δx: four layers cover it
+        assert_eq!(c.tank[0].layer_count(&c), 4);
     }
 
     #[test]

@@ -128,6 +128,24 @@ impl Case {
                 finite("initial.strain_rate", *strain_rate)?;
                 positive("initial.radius", *radius)?;
             }
+            Some(InitialField::StandingWave {
+                amplitude,
+                length,
+                depth,
+            }) => {
+                only_2d(d, "standing_wave")?;
+                finite("initial.amplitude", *amplitude)?;
+                positive("initial.length", *length)?;
+                positive("initial.depth", *depth)?;
+                let g = self.gravity();
+                if g[0] != 0.0 || g[1].is_nan() || g[1] >= 0.0 {
+                    return Err(SphError::invalid(
+                        "fluid.gravity",
+                        format!("{g:?}"),
+                        "gravity along -y (initial.type = \"standing_wave\")",
+                    ));
+                }
+            }
             None => {}
         }
         self.check_particle_count()?;

@@ -1,17 +1,21 @@
 //! Analytic initial fields laid over the fluid blocks: the Taylor-Green vortex, the
-//! elliptic drop and the rotating square patch, and the check that a field fits the
-//! fluid it fills.
+//! elliptic drop, the rotating square patch and the linear standing wave, and the
+//! check that a field fits the fluid it fills.
 
 use crate::case::{Case, InitialField};
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
 use std::f64::consts::PI;
 
-/// Velocity and pressure of an analytic initial field at `x` (2D fields).
+/// Velocity and pressure of an analytic initial field at `x` (2D fields); `hydrostatic`
+/// is the block's own pressure there, kept by fields that do not set one, and `g` the
+/// magnitude of gravity.
 pub(super) fn value<const D: usize>(
     field: &InitialField,
     x: &Vector<D>,
     rho0: f64,
+    g: f64,
+    hydrostatic: f64,
 ) -> (Vector<D>, f64) {
     let mut u = Vector::<D>::zeros();
     let p = match *field {
@@ -41,8 +45,27 @@ pub(super) fn value<const D: usize>(
             u[1] = -angular_velocity * x[0];
             rho0 * angular_velocity.powi(2) * rotating_square_pressure(x[0], x[1], side)
         }
+        InitialField::StandingWave {
+            amplitude,
+            length,
+            depth,
+        } => {
+            let k = PI / length;
+            // u = ∇φ at t = 0: B k (-cosh ky sin kx, sinh ky cos kx)
+            let bk = amplitude * standing_wave_frequency(length, depth, g) / (k * depth).sinh();
+            u[0] = -bk * (k * x[1]).cosh() * (k * x[0]).sin();
+            u[1] = bk * (k * x[1]).sinh() * (k * x[0]).cos();
+            hydrostatic
+        }
     };
     (u, p)
+}
+
+/// Angular frequency of the first sloshing mode by linear theory, `ω² = g k tanh kd`
+/// with `k = π/L` (Lamb 1932, §257).
+pub fn standing_wave_frequency(length: f64, depth: f64, g: f64) -> f64 {
+    let k = PI / length;
+    (g * k * (k * depth).tanh()).sqrt()
 }
 
 /// Initial pressure of the rotating square patch over `ρ0 ω²`: the solution of
@@ -66,8 +89,9 @@ pub fn rotating_square_pressure(x: f64, y: f64, side: f64) -> f64 {
 
 /// An analytic initial field must fit the fluid it is laid over: the elliptic drop and
 /// the rotating square take their pressure from the radius and side they are given
-/// (zero on the free surface), and the Taylor-Green field must be periodic with the
-/// domain. A mismatch gives negative pressure outside a smaller disc, or a jump.
+/// (zero on the free surface), the standing wave its mode from the tank it fills, and
+/// the Taylor-Green field must be periodic with the domain. A mismatch gives negative
+/// pressure outside a smaller disc, a jump, or flow through the walls.
 pub(super) fn check<const D: usize>(case: &Case, particles: &Particles<D>) -> Result<()> {
     let dx = case.dx();
     let fluid = || {
@@ -87,6 +111,22 @@ pub(super) fn check<const D: usize>(case: &Case, particles: &Particles<D>) -> Re
             let extent = 2.0 * (fluid().map(|x| x.amax()).fold(0.0, f64::max) + 0.5 * dx);
             if !fits(extent, side) {
                 return Err(field_mismatch("initial.side", side, "side", extent));
+            }
+        }
+        Some(InitialField::StandingWave { length, depth, .. }) => {
+            let span = |d: usize| {
+                let (lo, hi) = fluid().fold((f64::MAX, f64::MIN), |(lo, hi), x| {
+                    (lo.min(x[d] - 0.5 * dx), hi.max(x[d] + 0.5 * dx))
+                });
+                (lo.abs() < 1e-9 * length).then_some(hi)
+            };
+            let close =
+                |got: Option<f64>, want: f64| got.is_some_and(|h| (h - want).abs() <= 1e-6 * want);
+            if !close(span(0), length) {
+                return Err(field_mismatch_box("initial.length", length, "x", span(0)));
+            }
+            if !close(span(1), depth) {
+                return Err(field_mismatch_box("initial.depth", depth, "y", span(1)));
             }
         }
         Some(InitialField::TaylorGreen { wavelength, .. }) => {
@@ -124,5 +164,16 @@ fn field_mismatch(key: &str, value: f64, what: &str, extent: f64) -> SphError {
             "the {what} of the fluid the field fills, centred at the origin (the fluid_block \
              particles span a {what} of {extent:.6} m)"
         ),
+    )
+}
+
+fn field_mismatch_box(key: &str, value: f64, axis: &str, hi: Option<f64>) -> SphError {
+    let span = hi.map_or("does not start at 0".to_string(), |h| {
+        format!("spans 0 to {h:.6} m")
+    });
+    SphError::invalid(
+        key,
+        value,
+        format!("the extent along {axis} of the fluid the field fills, from 0 (the fluid {span})"),
     )
 }

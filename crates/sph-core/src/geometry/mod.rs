@@ -79,7 +79,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
             p = rho0 * (top + gravity.dot(&x));
         }
         if let Some(field) = &case.initial {
-            (u, p) = initial_field::value(field, &x, rho0);
+            (u, p) = initial_field::value(field, &x, rho0, gravity.norm(), p);
         }
         let rho = eos.density(p + eos.background);
         particles.push(Kind::Fluid, x, u, rho, rho * volume);
@@ -194,10 +194,12 @@ mod tests {
     use super::initial_field::rotating_square_pressure;
     use super::*;
 
+    /// A tank at h/Δx = 1.33 (three wall layers), which the figures below count in.
     const TANK: &str = r#"
         dimension = 2
         [particles]
         spacing = 0.05
+        h_over_dx = 1.33
         [fluid]
         density = 1000.0
         gravity = [0.0, -9.81]
@@ -274,6 +276,36 @@ mod tests {
             &Case::from_toml_str(&square.replace("side = 2.0", "side = 1.0")).unwrap()
         )
         .is_ok());
+    }
+
+    #[test]
+    fn the_standing_wave_must_fill_its_tank_from_the_origin() {
+        let wave = |length: f64, depth: f64| {
+            TANK.replace("hi = [1.2, 0.6]", "hi = [1.0, 0.5]")
+                + &format!(
+                    "[initial]\ntype = \"standing_wave\"\namplitude = 0.01\n\
+                     length = {length:?}\ndepth = {depth:?}\n"
+                )
+        };
+        assert!(build::<2>(&Case::from_toml_str(&wave(1.0, 0.5)).unwrap()).is_ok());
+        let e = build_error(&wave(3.2196, 0.5));
+        assert!(
+            e.starts_with("initial.length = 3.2196: expected the extent along x of the fluid"),
+            "{e}"
+        );
+        let e = build_error(&wave(1.0, 0.6));
+        assert!(
+            e.starts_with("initial.depth = 0.6: expected the extent along y"),
+            "{e}"
+        );
+        let sideways = Case::from_toml_str(
+            &wave(1.0, 0.5).replace("gravity = [0.0, -9.81]", "gravity = [-9.81, 0.0]"),
+        );
+        let e = sideways.unwrap_err().to_string();
+        assert!(
+            e.starts_with("fluid.gravity = [-9.81, 0.0]: expected gravity along -y"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -7,7 +7,7 @@ Parts (run one with its name, or all by default):
             h/Δx = 2; with --baseline BIN the same runs of another build, alternated.
   variants  the cost of a step of each scheme at 20k particles, 2 threads, relative to
             δ-SPH: plain WCSPH, δ-SPH with the energy budget, δ+-SPH, δ+-SPH with tensile
-            control, δ-SPH with the symplectic scheme.
+            control; at h/Δx = 1.33 and 2 (the default).
   solution  wall time of examples/dam_break_2d.toml as it stands (output on), and of
             the same case with the symplectic scheme at CFL 0.25 (its default); with --baseline BIN
             the baseline's time too, alternated.
@@ -128,16 +128,24 @@ def evals(args):
 
 
 def variants(args):
-    print("cost of a step relative to δ-SPH (RK4), about 20k fluid particles, 2 threads")
+    for h_dx in (1.33, 2.0):
+        print(f"cost of a step relative to δ-SPH (RK4), about 20k fluid particles, 2 threads, "
+              f"h/Δx = {h_dx}")
+        variants_at(args, h_dx)
+
+
+def variants_at(args, h_dx):
     n = 20_000
+
+    def case(**scheme):
+        return case_2d(n, args.steps, h_over_dx=h_dx, **scheme)
+
     cases = [
-        ("δ-SPH", case_2d(n, args.steps)),
-        ("plain WCSPH", case_2d(n, args.steps, diffusion='"none"')),
-        ("δ-SPH + energy budget",
-         set_key(case_2d(n, args.steps), "energy_budget", "true", "diagnostics")),
-        ("δ+-SPH", case_2d(n, args.steps, shifting='"delta_plus"')),
-        ("δ+-SPH + tensile control",
-         case_2d(n, args.steps, shifting='"delta_plus"', tensile_control="true")),
+        ("δ-SPH", case()),
+        ("plain WCSPH", case(diffusion='"none"')),
+        ("δ-SPH + energy budget", set_key(case(), "energy_budget", "true", "diagnostics")),
+        ("δ+-SPH", case(shifting='"delta_plus"')),
+        ("δ+-SPH + tensile control", case(shifting='"delta_plus"', tensile_control="true")),
     ]
     res = median_runs([(label, text, CLI) for label, text in cases], args.repeat)
     ref = res["δ-SPH"][0] / res["δ-SPH"][1]["steps"]

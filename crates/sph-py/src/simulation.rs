@@ -388,6 +388,26 @@ impl PySimulation {
         Ok(dict)
     }
 
+    /// The fluid's load on each body (every tank and wall, by name, in case order) at
+    /// the current state: ``{name: {"pressure": (D,), "viscous": (D,), "moment": (3,)}}``
+    /// in N (per unit width in 2D) and N m about ``diagnostics.moment_point``. The
+    /// loads are minus the wall terms of the fluid's momentum equation.
+    fn loads<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        each!(&mut self.solver, s => {
+            let names: Vec<String> = s.bodies().iter().map(|b| b.name.clone()).collect();
+            for (name, load) in names.into_iter().zip(s.loads()) {
+                let entry = PyDict::new(py);
+                entry.set_item("pressure", PyArray1::from_slice(py, load.pressure.as_slice()))?;
+                entry.set_item("viscous", PyArray1::from_slice(py, load.viscous.as_slice()))?;
+                entry.set_item("moment", PyArray1::from_slice(py, load.moment.as_slice()))?;
+                dict.set_item(name, entry)?;
+            }
+        });
+        self.pressure_fresh = true;
+        Ok(dict)
+    }
+
     /// Pressure [Pa] interpolated (Shepard) from the fluid at ``points``: array-like
     /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
     /// fluid within the kernel support reads 0.

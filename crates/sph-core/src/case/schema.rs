@@ -105,6 +105,9 @@ pub struct BoxConfig {
     /// blocks only; default box).
     #[serde(default)]
     pub shape: Option<Shape>,
+    /// Name of the body in the loads' columns (walls only; default `wall<k>`).
+    #[serde(default)]
+    pub name: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -134,6 +137,9 @@ pub struct TankConfig {
     /// must be closed and the velocity tangential to it.
     #[serde(default)]
     pub lid_velocity: Option<Vec<f64>>,
+    /// Name of the body in the loads' columns (default `tank<k>`).
+    #[serde(default)]
+    pub name: Option<String>,
 }
 
 impl TankConfig {
@@ -409,6 +415,13 @@ pub struct DiagnosticsConfig {
     /// flag, the normal and λ with it.
     #[serde(default)]
     pub free_surface: bool,
+    /// Write each body's load (every tank and wall, see [`crate::boundary::bodies`]):
+    /// pressure and viscous force and the moment about `moment_point`.
+    #[serde(default)]
+    pub loads: bool,
+    /// The point moments are taken about; default the origin.
+    #[serde(default)]
+    pub moment_point: Option<Vec<f64>>,
 }
 
 /// What a run writes besides snapshots and the time series.
@@ -422,6 +435,32 @@ pub struct OutputConfig {
 }
 
 impl Case {
+    /// The bodies' names in build order, tanks then walls, each with the key that sets
+    /// it (`tank[k].name`; the default `tank<k>`, `wall<k>`).
+    pub fn body_names(&self) -> Vec<(String, String)> {
+        let tanks = self.tank.iter().enumerate().map(|(k, t)| {
+            (
+                format!("tank[{k}].name"),
+                t.name.clone().unwrap_or(format!("tank{k}")),
+            )
+        });
+        let walls = self.wall.iter().enumerate().map(|(k, w)| {
+            (
+                format!("wall[{k}].name"),
+                w.name.clone().unwrap_or(format!("wall{k}")),
+            )
+        });
+        tanks.chain(walls).collect()
+    }
+
+    /// The point loads' moments are taken about (the origin by default).
+    pub fn moment_point(&self) -> Vec<f64> {
+        self.diagnostics
+            .moment_point
+            .clone()
+            .unwrap_or_else(|| vec![0.0; self.dimension])
+    }
+
     /// Initial particle spacing Δx.
     pub fn dx(&self) -> f64 {
         self.particles.spacing

@@ -166,12 +166,41 @@ impl Case {
         for (k, p) in self.diagnostics.probes.iter().enumerate() {
             components(&format!("diagnostics.probes[{k}]"), p, d)?;
         }
+        if let Some(c) = &self.diagnostics.moment_point {
+            components("diagnostics.moment_point", c, d)?;
+        }
+        self.check_body_names()?;
         if let Some(a) = self.diagnostics.surge_front_axis {
             if a >= d {
                 return Err(SphError::invalid(
                     "diagnostics.surge_front_axis",
                     a,
                     format!("an axis index below {d}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Body names head the loads' columns: a letter, then letters, digits or `_`, each
+    /// name once.
+    fn check_body_names(&self) -> Result<()> {
+        let names = self.body_names();
+        for (k, (key, name)) in names.iter().enumerate() {
+            let plain = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+                && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+            if !plain {
+                return Err(SphError::invalid(
+                    key,
+                    format!("{name:?}"),
+                    "a letter, then letters, digits or _ (it heads the loads' columns)",
+                ));
+            }
+            if let Some((other, _)) = names[..k].iter().find(|(_, n)| n == name) {
+                return Err(SphError::invalid(
+                    key,
+                    format!("{name:?}"),
+                    format!("a name no other body has ({other} has it)"),
                 ));
             }
         }
@@ -401,6 +430,35 @@ mod tests {
     fn negative_spacing_is_refused() {
         let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = -0.01"));
         assert_eq!(e, "particles.spacing = -0.01: expected a positive number");
+    }
+
+    #[test]
+    fn body_names_are_plain_and_unique() {
+        let walls = |a: &str, b: &str| {
+            MINIMAL.to_string()
+                + &format!(
+                    "[[wall]]\nname = \"{a}\"\nlo = [0.3, 0.0]\nhi = [0.4, 0.1]\n\
+                     [[wall]]\nname = \"{b}\"\nlo = [0.4, 0.0]\nhi = [0.5, 0.1]\n"
+                )
+        };
+        assert!(Case::from_toml_str(&walls("step", "baffle_2")).is_ok());
+        let e = error_of(&walls("step", "step"));
+        assert!(
+            e.starts_with(
+                "wall[1].name = \"step\": expected a name no other body has (wall[0].name has it)"
+            ),
+            "{e}"
+        );
+        let e = error_of(&walls("tank0", "b"));
+        assert!(
+            e.starts_with("wall[0].name = \"tank0\": expected a name no other"),
+            "{e}"
+        );
+        let e = error_of(&walls("a b", "c"));
+        assert!(
+            e.starts_with("wall[0].name = \"a b\": expected a letter"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -42,10 +42,11 @@ pub(super) fn corners<const D: usize>(lo: &Vector<D>, hi: &Vector<D>) -> Vec<Vec
         .collect()
 }
 
-/// Wall particles with their (fixed or sliding-lid) velocities.
-pub(super) fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector<D>)> {
+/// Wall particles with their (fixed or sliding-lid) velocities, one list per body:
+/// the tanks, then the wall boxes, in case order.
+pub(super) fn wall_points<const D: usize>(case: &Case) -> Vec<Vec<(Vector<D>, Vector<D>)>> {
     let dx = case.dx();
-    let mut points = Vec::new();
+    let mut bodies = Vec::new();
     for t in &case.tank {
         let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
         let pad = Vector::<D>::repeat(t.layer_count(case) as f64 * dx);
@@ -55,7 +56,7 @@ pub(super) fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector
             .as_deref()
             .map(vector)
             .unwrap_or_else(Vector::zeros);
-        points.extend(
+        bodies.push(
             lattice(&(lo - pad), &(hi + pad), dx)
                 .into_iter()
                 .filter(|x| {
@@ -68,12 +69,18 @@ pub(super) fn wall_points<const D: usize>(case: &Case) -> Vec<(Vector<D>, Vector
                 .map(|x| {
                     let above = x[D - 1] > hi[D - 1];
                     (x, if above { lid } else { Vector::zeros() })
-                }),
+                })
+                .collect(),
         );
     }
     for b in &case.wall {
         let box_points = lattice(&vector(&b.lo), &vector(&b.hi), dx);
-        points.extend(box_points.into_iter().map(|x| (x, Vector::zeros())));
+        bodies.push(
+            box_points
+                .into_iter()
+                .map(|x| (x, Vector::zeros()))
+                .collect(),
+        );
     }
-    points
+    bodies
 }

@@ -11,6 +11,7 @@ mod checks;
 pub mod initial_field;
 mod lattice;
 
+use crate::boundary::bodies::Body;
 use crate::case::{Case, InitialField};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
@@ -23,6 +24,8 @@ pub struct Setup<const D: usize> {
     pub domain: Domain<D>,
     pub eos: LinearEos,
     pub gravity: Vector<D>,
+    /// The tanks and walls, by the ids of their particles.
+    pub bodies: Vec<Body>,
 }
 
 pub(super) fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
@@ -85,8 +88,20 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         particles.push(Kind::Fluid, x, u, rho, rho * volume);
     }
 
-    for (x, u) in lattice::wall_points::<D>(case) {
-        particles.push(Kind::Wall, x, u, rho0, rho0 * volume);
+    let mut bodies = Vec::new();
+    for ((_, name), points) in case
+        .body_names()
+        .into_iter()
+        .zip(lattice::wall_points::<D>(case))
+    {
+        let first = particles.next_id;
+        for (x, u) in points {
+            particles.push(Kind::Wall, x, u, rho0, rho0 * volume);
+        }
+        bodies.push(Body {
+            name,
+            ids: first..particles.next_id,
+        });
     }
     checks::check_overlap(&particles, dx)?;
     initial_field::check(case, &particles)?;
@@ -97,6 +112,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         domain,
         eos,
         gravity,
+        bodies,
     })
 }
 

@@ -12,6 +12,7 @@
 //! per evaluation, never per pair. Pair loops gather per particle (Rayon over
 //! particles, no shared writes).
 
+use crate::boundary::bodies::Load;
 use crate::boundary::extrapolate_walls;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
@@ -127,6 +128,19 @@ pub trait Model<const D: usize>: Send + Sync {
     /// diffusion (the first of each step), computed in its pair loop; `None` unless the
     /// scheme was built with the energy budget.
     fn last_powers(&self) -> Option<Powers>;
+    /// The load of the fluid on each body at the current state (pressures and volumes
+    /// refreshed first, as an evaluation does): minus the wall terms of the momentum
+    /// equation, see [`crate::boundary::bodies`]. `body[j]` is the body of particle j
+    /// (`None` for fluid), `centre` the moment point.
+    fn wall_loads(
+        &mut self,
+        particles: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        body: &[Option<usize>],
+        bodies: usize,
+        centre: &Vector<D>,
+    ) -> Vec<Load<D>>;
     /// Kernel value `W(r)`.
     fn w(&self, r: f64) -> f64;
     /// Kernel support radius R.
@@ -175,6 +189,13 @@ struct Sums<const D: usize> {
     fluid_in_reach: bool,
 }
 
+/// One fluid-wall pair of the momentum equation (see [`Scheme::wall_pair`]).
+struct WallPair<const D: usize> {
+    j: usize,
+    grad_w: Vector<D>,
+    viscous: f64,
+}
+
 /// One fluid particle's rates and its share of the powers.
 struct Row<const D: usize> {
     drho: f64,
@@ -215,12 +236,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         let xi = p.x[i];
         let ui = p.u[i];
         let (pi, rho_i) = (p.p[i], p.rho[i]);
-        // Tensile instability control (Sun et al. 2018, SCHEME.md §9): an interior particle
-        // in tension takes (p_j - p_i) instead of (p_j + p_i). Decided once per particle.
-        let pi_pair = match &self.interior {
-            Some(interior) if pi < 0.0 && interior[i] => -pi,
-            _ => pi,
-        };
+        let pi_pair = self.pair_pressure(i, pi);
         let zero = Vector::<D>::zeros();
         let grad_i = if DIFF && Df::NEEDS_GRADIENT {
             self.grad[i]
@@ -274,21 +290,15 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
                 s.diffusion += psi * vol[j];
             }
         }
-        let no_slip = V::ACTIVE && self.physics.wall_viscous_weight != 0.0;
         for &j in list.walls(i) {
-            let j = j as usize;
-            let x_ij = domain.separation(&xi, &p.x[j]);
-            let r2 = x_ij.norm_squared();
-            let f = self.kernel.dw_over_r(r2.sqrt());
-            let grad_w = x_ij * (f * vol[j]);
-            s.divergence += (p.u[j] - ui).dot(&grad_w);
-            s.pressure += grad_w * (p.p[j] + pi_pair);
+            let w = self.wall_pair(i, j as usize, p, domain);
+            s.divergence += (p.u[w.j] - ui).dot(&w.grad_w);
+            s.pressure += w.grad_w * (p.p[w.j] + pi_pair);
             if BUDGET {
-                s.wall_pressure += grad_w * p.p[j];
+                s.wall_pressure += w.grad_w * p.p[w.j];
             }
-            if no_slip {
-                let pi_ij = -(p.u_wall_visc[j] - ui).dot(&x_ij) / (r2 + self.eta2);
-                s.viscous += grad_w * (pi_ij * self.physics.wall_viscous_weight);
+            if V::ACTIVE {
+                s.viscous += w.grad_w * w.viscous;
             }
         }
         if !s.fluid_in_reach {
@@ -373,6 +383,51 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         }
     }
 
+    /// The p_i of fluid particle i in its pair terms. Tensile instability control (Sun
+    /// et al. 2018, SCHEME.md §9): an interior particle in tension takes (p_j - p_i)
+    /// instead of (p_j + p_i). Decided once per particle.
+    #[inline(always)]
+    fn pair_pressure(&self, i: usize, pi: f64) -> f64 {
+        match &self.interior {
+            Some(interior) if pi < 0.0 && interior[i] => -pi,
+            _ => pi,
+        }
+    }
+
+    /// `∇_iW_iw V_w` of fluid particle i and wall particle j, and the viscous factor
+    /// `w_v π_iw` of the no-slip wall term (0 on free-slip walls or without viscosity).
+    #[inline(always)]
+    fn wall_pair(&self, i: usize, j: usize, p: &Particles<D>, domain: &Domain<D>) -> WallPair<D> {
+        let x_ij = domain.separation(&p.x[i], &p.x[j]);
+        let r2 = x_ij.norm_squared();
+        let f = self.kernel.dw_over_r(r2.sqrt());
+        let weight = self.physics.wall_viscous_weight;
+        let viscous = if V::ACTIVE && weight != 0.0 {
+            -(p.u_wall_visc[j] - p.u[i]).dot(&x_ij) / (r2 + self.eta2) * weight
+        } else {
+            0.0
+        };
+        WallPair {
+            j,
+            grad_w: x_ij * (f * self.volume[j]),
+            viscous,
+        }
+    }
+
+    /// Whether fluid particle i has another fluid particle within the kernel support.
+    fn fluid_in_reach(
+        &self,
+        i: usize,
+        p: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) -> bool {
+        list.fluid(i).iter().any(|&j| {
+            let r = domain.separation(&p.x[i], &p.x[j as usize]).norm();
+            self.kernel.dw_over_r(r) != 0.0
+        })
+    }
+
     /// `Σ_w P(p_w) ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
     fn wall_sum(
         &self,
@@ -391,6 +446,23 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
                 x_ij * (f * pair_pressure(p.p[j]) * self.volume[j])
             })
             .sum()
+    }
+
+    /// What the pair terms read at the current state: fluid pressure from the EOS, the
+    /// walls' extrapolated pressure and density, every particle's volume `m/ρ`.
+    fn prepare(
+        &mut self,
+        particles: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+    ) {
+        self.update_pressure_and_volume(particles);
+        let ph = self.physics;
+        extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
+        // the walls' densities changed with their pressures
+        for &w in list.wall_particles() {
+            self.volume[w] = particles.mass[w] / particles.rho[w];
+        }
     }
 
     /// Fluid pressure from the EOS and every particle's volume `m/ρ`.
@@ -441,13 +513,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         with_diffusion: bool,
     ) {
         rates.resize(particles.len());
-        self.update_pressure_and_volume(particles);
-        let ph = self.physics;
-        extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
-        // the walls' densities changed with their pressures
-        for &w in list.wall_particles() {
-            self.volume[w] = particles.mass[w] / particles.rho[w];
-        }
+        self.prepare(particles, list, domain);
         if with_diffusion && Df::NEEDS_GRADIENT {
             let mut grad = std::mem::take(&mut self.grad);
             density_gradient(
@@ -509,6 +575,52 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
 
     fn last_powers(&self) -> Option<Powers> {
         self.powers
+    }
+
+    fn wall_loads(
+        &mut self,
+        particles: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        body: &[Option<usize>],
+        bodies: usize,
+        centre: &Vector<D>,
+    ) -> Vec<Load<D>> {
+        self.prepare(particles, list, domain);
+        let p: &Particles<D> = particles;
+        let k = self.viscosity.k();
+        (0..p.len())
+            .into_par_iter()
+            .filter(|&i| p.kind[i] == Kind::Fluid)
+            .fold(
+                || vec![Load::default(); bodies],
+                |mut loads, i| {
+                    let (pi, scale) = (p.p[i], p.mass[i] / p.rho[i]);
+                    let lone = !self.fluid_in_reach(i, p, list, domain);
+                    let pi_pair = self.pair_pressure(i, pi);
+                    for &j in list.walls(i) {
+                        let w = self.wall_pair(i, j as usize, p, domain);
+                        let Some(b) = body[w.j] else { continue };
+                        let pair = if lone {
+                            (p.p[w.j] + pi).max(0.0)
+                        } else {
+                            p.p[w.j] + pi_pair
+                        };
+                        let viscous = if V::ACTIVE {
+                            -w.grad_w * (w.viscous * k * scale)
+                        } else {
+                            Vector::zeros()
+                        };
+                        let arm = domain.separation(&p.x[w.j], centre);
+                        loads[b].add_pair(w.grad_w * (pair * scale), viscous, &arm);
+                    }
+                    loads
+                },
+            )
+            .reduce(
+                || vec![Load::default(); bodies],
+                |a, b| a.into_iter().zip(b).map(|(x, y)| x + y).collect(),
+            )
     }
 
     fn w(&self, r: f64) -> f64 {

@@ -8,6 +8,7 @@ mod series;
 
 pub use checkpoint::Checkpoint;
 
+use crate::boundary::bodies::{body_of, Body, Load};
 use crate::case::{Case, IntegratorChoice, ShiftingChoice};
 use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
@@ -91,6 +92,7 @@ pub struct Simulation<const D: usize> {
     control: TimeStepControl,
     max_skin: f64,
     last_acceleration: f64,
+    bodies: Vec<Body>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -142,6 +144,7 @@ impl<const D: usize> Simulation<D> {
             control,
             max_skin,
             last_acceleration: 0.0,
+            bodies: setup.bodies,
         };
         sim.rebuild(0.0);
         sim.state_changed();
@@ -468,6 +471,36 @@ impl<const D: usize> Simulation<D> {
     /// Brings pressures (fluid and walls) up to date with the current state. Call
     /// before writing output or reading pressure after steps. It changes nothing the
     /// next step depends on, so a run gives the same bits whether or not it is called.
+    /// The tanks and walls of the case, in case order (tanks first).
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
+    }
+
+    /// The fluid's load on each body at the current state, as in [`Self::bodies`]
+    /// (see [`crate::boundary::bodies`]); refreshes the pressures.
+    pub fn loads(&mut self) -> Vec<Load<D>> {
+        let body: Vec<Option<usize>> = self
+            .particles
+            .id
+            .par_iter()
+            .zip(self.particles.kind.par_iter())
+            .map(|(&id, &kind)| {
+                (kind == Kind::Wall)
+                    .then(|| body_of(&self.bodies, id))
+                    .flatten()
+            })
+            .collect();
+        let centre = Vector::<D>::from_fn(|d, _| self.case.moment_point()[d]);
+        self.model.wall_loads(
+            &mut self.particles,
+            &self.list,
+            &self.domain,
+            &body,
+            self.bodies.len(),
+            &centre,
+        )
+    }
+
     pub fn sync_pressure(&mut self) {
         self.model
             .update_pressure_field(&mut self.particles, &self.list, &self.domain);

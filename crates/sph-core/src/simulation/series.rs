@@ -29,6 +29,11 @@ impl<const D: usize> Simulation<D> {
         if diag.surge_front_axis.is_some() {
             h.push("surge_front".into());
         }
+        if diag.loads {
+            for b in &self.bodies {
+                h.extend(load_columns(&b.name, D));
+            }
+        }
         h
     }
 
@@ -61,6 +66,29 @@ impl<const D: usize> Simulation<D> {
         if let Some(axis) = diag.surge_front_axis {
             v.push(self.surge_front(axis));
         }
+        if diag.loads {
+            for load in self.loads() {
+                v.extend(load.pressure.iter().chain(load.viscous.iter()));
+                if D == 2 {
+                    v.push(load.moment[2]);
+                } else {
+                    v.extend(load.moment.iter());
+                }
+            }
+        }
         v
     }
+}
+
+/// A body's load columns: `<name>_pressure_fx …`, `<name>_viscous_fx …`, then the
+/// moment (`<name>_moment_z` in 2D, `_x _y _z` in 3D).
+fn load_columns(name: &str, dim: usize) -> Vec<String> {
+    let axes = &["x", "y", "z"][..dim];
+    let forces = ["pressure", "viscous"]
+        .iter()
+        .flat_map(|part| axes.iter().map(move |a| format!("{name}_{part}_f{a}")));
+    let moments: &[&str] = if dim == 2 { &["z"] } else { &["x", "y", "z"] };
+    forces
+        .chain(moments.iter().map(|a| format!("{name}_moment_{a}")))
+        .collect()
 }

@@ -101,6 +101,11 @@ pub struct BoxConfig {
     /// (fluid blocks only; default true).
     #[serde(default)]
     pub hydrostatic: Option<bool>,
+    /// Height (along -g) of the free surface above this block's hydrostatic start, when
+    /// it is not the block's own top: blocks stacked around a submerged wall share the
+    /// surface of the top one (fluid blocks only).
+    #[serde(default)]
+    pub surface: Option<f64>,
     /// Fill the whole box, or only the ellipse (ellipsoid) inscribed in it (fluid
     /// blocks only; default box).
     #[serde(default)]

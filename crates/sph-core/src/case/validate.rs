@@ -51,14 +51,25 @@ impl Case {
             if let Some(v) = &b.velocity {
                 components(&format!("fluid_block[{k}].velocity"), v, d)?;
             }
+            if let Some(s) = b.surface {
+                finite(&format!("fluid_block[{k}].surface"), s)?;
+            }
+            if let Some(name) = &b.name {
+                return Err(SphError::invalid(
+                    format!("fluid_block[{k}].name"),
+                    format!("{name:?}"),
+                    "no name (bodies are tanks and walls; fluid blocks carry no load)",
+                ));
+            }
         }
         for (k, b) in self.wall.iter().enumerate() {
             check_box(&format!("wall[{k}]"), &b.lo, &b.hi, d)?;
-            if b.velocity.is_some() || b.hydrostatic.is_some() || b.shape.is_some() {
+            let fluid_keys = b.velocity.is_some() || b.hydrostatic.is_some();
+            if fluid_keys || b.shape.is_some() || b.surface.is_some() {
                 return Err(SphError::invalid(
                     format!("wall[{k}]"),
-                    "velocity/hydrostatic/shape",
-                    "only lo and hi (walls are fixed boxes)",
+                    "velocity/hydrostatic/shape/surface",
+                    "only lo, hi and name (walls are fixed boxes)",
                 ));
             }
             self.check_wall_depth(k, b)?;
@@ -457,6 +468,12 @@ mod tests {
         let e = error_of(&walls("a b", "c"));
         assert!(
             e.starts_with("wall[0].name = \"a b\": expected a letter"),
+            "{e}"
+        );
+        let named = MINIMAL.replace("hi = [0.2, 0.1]", "hi = [0.2, 0.1]\nname = \"water\"");
+        let e = error_of(&named);
+        assert!(
+            e.starts_with("fluid_block[0].name = \"water\": expected no name"),
             "{e}"
         );
     }

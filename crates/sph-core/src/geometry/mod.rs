@@ -75,10 +75,13 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         let mut p = 0.0;
         if b.hydrostatic.unwrap_or(true) {
             // p = ρ0 (s_top - s(x)), s(x) = -g·x the height times |g|
-            let top = lattice::corners(&vector(&b.lo), &vector(&b.hi))
-                .iter()
-                .map(|c| -gravity.dot(c))
-                .fold(f64::MIN, f64::max);
+            let top = match b.surface {
+                Some(height) => height * gravity.norm(),
+                None => lattice::corners(&vector(&b.lo), &vector(&b.hi))
+                    .iter()
+                    .map(|c| -gravity.dot(c))
+                    .fold(f64::MIN, f64::max),
+            };
             p = rho0 * (top + gravity.dot(&x));
         }
         if let Some(field) = &case.initial {

@@ -490,7 +490,8 @@ impl<const D: usize> Simulation<D> {
                     .flatten()
             })
             .collect();
-        let centre = Vector::<D>::from_fn(|d, _| self.case.moment_point()[d]);
+        let point = self.case.moment_point();
+        let centre = Vector::<D>::from_fn(|d, _| point[d]);
         self.model.wall_loads(
             &mut self.particles,
             &self.list,

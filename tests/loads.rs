@@ -52,6 +52,11 @@ fn tank_of_five_walls() -> Case {
         [diagnostics]
         loads = true
         moment_point = [1.0, 0.0]
+        [[diagnostics.sensors]]
+        name = \"side\"
+        centre = [0.0, 0.4]
+        normal = [1.0, 0.0]
+        size = 0.2
     ";
     Case::from_toml_str(text).unwrap()
 }
@@ -93,6 +98,18 @@ fn the_hydrostatic_tank_carries_the_weight_and_the_thrust_of_its_water() {
     assert!(
         (height - h / 3.0).abs() < 0.02 * h,
         "left thrust acts at y = {height}"
+    );
+    // a face sensor 0.2 m high on the left wall, centred 0.6 m deep, reads ρ0 g 0.6 m
+    // averaged over its face, as its centre does (measured 1.0047 ρ0 g 0.6 m)
+    let header = sim.series_header();
+    let row = sim.series_values();
+    let column = |name: &str| row[header.iter().position(|c| c == name).unwrap()];
+    let (face, point) = (column("side_pressure"), column("side_point"));
+    println!("side sensor: face {face:.1} Pa, centre {point:.1} Pa");
+    assert!((face / (rho0 * G * 0.6) - 1.0).abs() < 0.01, "face {face}");
+    assert!(
+        (face / point - 1.0).abs() < 0.005,
+        "face {face} centre {point}"
     );
 }
 
@@ -190,4 +207,27 @@ fn the_series_names_each_body() {
     ] {
         assert!(header.iter().any(|h| h == column), "{column} in {header:?}");
     }
+}
+
+/// With reference scales the series carries each body's force coefficients,
+/// C = F / (½ ρ U² L) per unit width: the water's weight ρ0 g H L over ½ ρ0 U² L at
+/// U = sqrt(2 g H) is 1, and the floor carries all but what the corner blocks take in
+/// the hydrostatic start (measured C_y = -0.975).
+#[test]
+fn the_force_coefficients_scale_the_loads() {
+    let mut case = tank_of_five_walls();
+    case.diagnostics.reference = Some(sph_core::case::ReferenceConfig {
+        velocity: (2.0 * G * 1.0_f64).sqrt(),
+        length: 2.0,
+        density: None,
+    });
+    let mut sim = Simulation::<2>::new(case).unwrap();
+    let header = sim.series_header();
+    let row = sim.series_values();
+    let column = |name: &str| row[header.iter().position(|c| c == name).unwrap()];
+    let q = 0.5 * 1000.0 * 2.0 * G * 2.0;
+    let floor_y = column("floor_pressure_fy") + column("floor_viscous_fy");
+    let cy = column("floor_cy");
+    assert!((cy / (floor_y / q) - 1.0).abs() < 1e-12, "{cy} {floor_y}");
+    assert!((cy + 1.0).abs() < 0.05, "floor C_y = {cy}");
 }

@@ -97,3 +97,17 @@ def test_paraview_opens_a_python_snapshot(tmp_path, coarse_dam_break):
     check_against_snapshots(seen, [tmp_path / "state.h5"], 2)
     covered, colours = shows_particles(tmp_path / "view.png")
     assert covered > 0.003 and colours > 20, f"{covered:.2%} of the view drawn, {colours} colours"
+
+
+def test_paraview_opens_a_preview(tmp_path):
+    """`sph-cli preview` of the water wedge (a polygon of fluid over a floor): the
+    initial particles as ParaView reads them, and the PNG beside them."""
+    out = tmp_path / "look"
+    subprocess.run([cli_binary(), "preview", EXAMPLES / "validation" / "water_wedge.toml",
+                    "--out", out], check=True, capture_output=True)
+    assert (out / "preview.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    snapshots = sorted(out.glob("particles_*.h5"))
+    assert len(snapshots) == 1
+    seen = paraview_view(out / "particles.xmf", tmp_path / "view.png")
+    assert seen["reader"].startswith("Xdmf3"), seen["reader"]
+    check_against_snapshots(seen, snapshots, 2)

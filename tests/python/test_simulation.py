@@ -349,3 +349,26 @@ def test_loads_name_each_body_and_carry_the_weight():
     weight = 1000 * 9.81 * 1.0 * 2.0
     assert -tank["pressure"][1] == pytest.approx(weight, rel=0.01)
     assert abs(tank["pressure"][0]) < 1e-3 * weight
+
+
+def test_shapes_from_python():
+    """A polygon of fluid in a tank, from a dict: the lattice points of the triangle
+    (a right isosceles one, legs of 20 spacings: 210 points on or inside it), and the
+    polygon wall's load named after it."""
+    config = {
+        "dimension": 2,
+        "particles": {"spacing": 0.05},
+        "fluid": {"density": 1000.0, "gravity": [0.0, -9.81]},
+        "shape": [
+            {"role": "fluid", "polygon": [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]},
+            {"role": "wall", "name": "floor",
+             "polygon": [[-0.2, -0.2], [1.2, -0.2], [1.2, 0.0], [-0.2, 0.0]]},
+        ],
+        "time": {"end": 0.01},
+    }
+    sim = ds.Simulation(config)
+    assert sim.n_fluid == 210
+    assert list(sim.loads()) == ["floor"]
+    config["shape"][0]["polygon"] = [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]
+    with pytest.raises(ValueError, match=r"^shape\[0\]\.polygon = edges 0 and 2 cross"):
+        ds.Simulation(config)

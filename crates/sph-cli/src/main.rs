@@ -59,10 +59,23 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
-    /// Validate a case without running it.
+    /// Validate a case without running it, and report what it builds: particles and
+    /// bounds of each fluid region and wall, and the closest fluid to a wall.
     Check {
         /// The case file.
         case: PathBuf,
+    },
+    /// Write the initial particles of a case (an HDF5/XDMF snapshot for ParaView and,
+    /// in 2D, preview.png) without running it.
+    Preview {
+        /// The case file.
+        case: PathBuf,
+        /// Output folder (default: `<case name>_preview`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Replace the files of an earlier preview or run in the output folder.
+        #[arg(long)]
+        force: bool,
     },
 }
 
@@ -132,6 +145,7 @@ fn main() -> ExitCode {
             }
         }
         Command::Check { case } => check(&case),
+        Command::Preview { case, out, force } => preview(&case, out, force),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -145,25 +159,51 @@ fn main() -> ExitCode {
     }
 }
 
+fn preview(path: &Path, out: Option<PathBuf>, force: bool) -> Result<()> {
+    let case = Case::from_file(path)?;
+    let dir = out.unwrap_or_else(|| PathBuf::from(format!("{}_preview", case.name)));
+    let written = match case.dimension {
+        2 => preview_into(Simulation::<2>::new(case)?, &dir, force)?,
+        _ => preview_into(Simulation::<3>::new(case)?, &dir, force)?,
+    };
+    for path in written {
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn preview_into<const D: usize>(
+    sim: Simulation<D>,
+    dir: &Path,
+    force: bool,
+) -> Result<Vec<PathBuf>> {
+    let mut output = Output::create(dir, force)?;
+    Ok(sph_core::io::preview::write(&sim, &mut output)?)
+}
+
 fn check(path: &Path) -> Result<()> {
     let case = Case::from_file(path)?;
-    let (n_fluid, n_total) = match case.dimension {
-        2 => counts(Simulation::<2>::new(case.clone())?),
-        _ => counts(Simulation::<3>::new(case.clone())?),
+    let (summary, report) = match case.dimension {
+        2 => describe::<2>(&case)?,
+        _ => describe::<3>(&case)?,
     };
     println!(
-        "{}: valid {}D case '{}': {} fluid and {} wall particles",
+        "{}: valid {}D case '{}': {summary}\n{report}",
         path.display(),
         case.dimension,
         case.name,
-        n_fluid,
-        n_total - n_fluid
     );
     Ok(())
 }
 
-fn counts<const D: usize>(sim: Simulation<D>) -> (usize, usize) {
-    (sim.n_fluid(), sim.particles().len())
+/// The particle counts, and the report of what each region built.
+fn describe<const D: usize>(case: &Case) -> Result<(String, String)> {
+    let setup = sph_core::geometry::build::<D>(case)?;
+    let report = setup.report(case.dx(), case.support());
+    let sim = Simulation::<D>::new(case.clone())?;
+    let (fluid, all) = (sim.n_fluid(), sim.particles().len());
+    let summary = format!("{fluid} fluid and {} wall particles", all - fluid);
+    Ok((summary, report))
 }
 
 struct RunOptions {

@@ -52,6 +52,78 @@ fn bad_input_gives_one_clear_line_and_no_panic() {
     }
 }
 
+/// `check` reports what each region built: the water wedge (a polygon) and its floor.
+#[test]
+fn check_reports_each_region_and_the_closest_fluid_to_a_wall() {
+    let out = cli(&["check", &example("validation/water_wedge.toml")]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // a 45° wedge 0.5 m high at Δx = 0.005: 100 rows of 2k lattice points, k = 1..100
+    assert!(
+        text.contains("10100 fluid and 1600 wall particles"),
+        "{text}"
+    );
+    let line = |key: &str| {
+        text.lines()
+            .find(|l| l.trim_start().starts_with(key))
+            .unwrap()
+    };
+    assert!(
+        line("shape[0]").contains("10100 particles, from [-0.4975, 0.0025]"),
+        "{text}"
+    );
+    assert!(
+        line("wall[0] (floor)").contains(" 1600 particles"),
+        "{text}"
+    );
+    assert!(
+        line("closest fluid").contains("0.0050 m (1.00 Δx), shape[0] at [-0.0025, 0.0025]"),
+        "{text}"
+    );
+}
+
+/// `preview` writes the initial particles (snapshot, index) and a PNG into a run
+/// folder of its own, and refuses a folder deltasph did not make.
+#[test]
+fn preview_writes_the_initial_particles_and_a_picture() {
+    let dir = scratch("preview");
+    let case = small_case(&dir, "");
+    let out_dir = dir.join("look");
+    let out = cli(&["preview", &case, "--out", out_dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let png = std::fs::read(out_dir.join("preview.png")).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    let snapshot = hdf5::File::open(out_dir.join("particles_000000.h5")).unwrap();
+    let x = snapshot.dataset("position").unwrap().shape();
+    // 24 × 12 fluid particles at Δx = 0.05 and the tank's wall layers, in 3D points
+    assert_eq!(x[1], 3);
+    assert!(x[0] > 288, "{x:?}");
+    assert!(out_dir.join("particles.xmf").exists());
+    let foreign = dir.join("mine");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "keep").unwrap();
+    let out = cli(&[
+        "preview",
+        &case,
+        "--out",
+        foreign.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("notes.txt")).unwrap(),
+        "keep"
+    );
+}
+
 #[test]
 fn fluid_overlapping_a_wall_is_refused() {
     let dir = scratch("overlap");

@@ -245,10 +245,15 @@ fn a_killed_run_leaves_only_complete_snapshots() {
     assert!(xmf.trim_end().ends_with("</Xdmf>"), "the index is whole");
 }
 
-/// The same case with a restart file every 0.1 s of simulated time.
+/// The same case with a restart file every 0.1 s of simulated time, and a filtered
+/// face sensor on the left wall, under the collapsing column (its filter's state goes
+/// into the restart file).
 fn checkpointed_case(dir: &Path, end: f64) -> String {
     let case = long_case(dir, end);
-    let text = std::fs::read_to_string(&case).unwrap() + "\n[output]\nrestart_interval = 0.1\n";
+    let text = std::fs::read_to_string(&case).unwrap()
+        + "\n[output]\nrestart_interval = 0.1\n\
+           [[diagnostics.sensors]]\nname = \"left\"\ncentre = [0.0, 0.12]\n\
+           normal = [1.0, 0.0]\nsize = 0.09\ncutoff = 50.0\n";
     std::fs::write(&case, text).unwrap();
     case
 }
@@ -305,6 +310,11 @@ fn a_run_killed_after_its_second_restart_file_continues_bit_for_bit() {
         rows(&parts),
         "the same time series, row for row"
     );
+    assert!(rows(&whole)
+        .lines()
+        .next()
+        .unwrap()
+        .contains("left_filtered"));
 }
 
 #[test]

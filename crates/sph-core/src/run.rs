@@ -222,16 +222,6 @@ impl<const D: usize> Run<D> {
 
 /// Intervals of the snapshots and of the time-series rows.
 pub fn intervals<const D: usize>(sim: &Simulation<D>) -> (f64, f64) {
-    let end = sim.case().time.end;
-    let snap_every = sim.case().time.output_interval;
-    let series_every = sim
-        .case()
-        .diagnostics
-        .interval
-        .unwrap_or(if snap_every > 0.0 {
-            snap_every / 10.0
-        } else {
-            end / 200.0
-        });
-    (snap_every, series_every)
+    let case = sim.case();
+    (case.time.output_interval, case.series_interval())
 }

@@ -1,6 +1,7 @@
 //! Hostile input for the case parser, the validator and the particle builder:
 //! arbitrary text, and valid cases with keys (scheme, geometry, domain, initial
-//! fields, probes) mutated to arbitrary values, must give a simulation or an error
+//! fields, probes, sensors, shapes) mutated to arbitrary values, must give a
+//! simulation or an error
 //! whose message is one line, never a panic.
 
 use proptest::prelude::*;
@@ -34,6 +35,18 @@ end = 1.0
 [diagnostics]
 probes = [[2.0, 0.1]]
 surge_front_axis = 0
+[[diagnostics.sensors]]
+name = "right"
+centre = [2.0, 0.1]
+normal = [-1.0, 0.0]
+size = 0.05
+cutoff = 10.0
+[[shape]]
+role = "wall"
+polygon = [[1.65, 0.0], [1.95, 0.0], [1.95, 0.4]]
+[[shape]]
+role = "cut"
+circle = { centre = [0.5, 0.25], radius = 0.1 }
 "#;
 
 /// A periodic box with an analytic initial field.
@@ -106,7 +119,21 @@ const DAM_BREAK_KEYS: &[&str] = &[
     "stability.max_mach",
     "diagnostics.probes",
     "diagnostics.surge_front_axis",
+    "diagnostics.sensors.0.name",
+    "diagnostics.sensors.0.normal",
+    "diagnostics.sensors.0.size",
+    "diagnostics.sensors.0.cutoff",
     "output.restart_interval",
+    "shape.0.role",
+    "shape.0.polygon",
+    "shape.0.polygon.1",
+    "shape.0.scale",
+    "shape.0.layers",
+    "shape.0.name",
+    "shape.0.file",
+    "shape.1.circle",
+    "shape.1.circle.radius",
+    "shape.1.box",
 ];
 
 const TAYLOR_GREEN_KEYS: &[&str] = &[
@@ -278,6 +305,11 @@ const NUMERIC_KEYS: &[&str] = &[
     "domain.lo",
     "domain.hi",
     "diagnostics.probes.0",
+    "diagnostics.sensors.0.centre",
+    "shape.0.polygon.0",
+    "shape.0.polygon.2",
+    "shape.1.circle.centre",
+    "shape.1.circle.radius",
     "time.end",
 ];
 

@@ -4,10 +4,12 @@
 //! the TOML parser report). All quantities are SI.
 
 mod schema;
+mod shapes;
 mod toml_errors;
 mod validate;
 
 pub use schema::*;
+pub use shapes::*;
 pub use validate::MAX_PARTICLES;
 
 use crate::error::{Result, SphError};
@@ -20,13 +22,27 @@ impl Case {
             path: path.display().to_string(),
             message: e.to_string(),
         })?;
-        Self::from_toml_str(&text).map_err(|e| match e {
+        let mut case = Self::from_toml_str(&text).map_err(|e| match e {
             SphError::CaseFile { message, .. } => SphError::CaseFile {
                 path: path.display().to_string(),
                 message,
             },
             other => other,
-        })
+        })?;
+        case.resolve_shape_files(path.parent().unwrap_or(Path::new("")));
+        Ok(case)
+    }
+
+    /// Makes the shapes' relative file paths relative to `folder` (the case file's),
+    /// so that the case reads the same files from any working folder, and again from
+    /// its restart file.
+    fn resolve_shape_files(&mut self, folder: &Path) {
+        let folder = std::path::absolute(folder).unwrap_or_else(|_| folder.to_path_buf());
+        for file in self.shape.iter_mut().filter_map(|s| s.file.as_mut()) {
+            if Path::new(file.as_str()).is_relative() {
+                *file = folder.join(&*file).display().to_string();
+            }
+        }
     }
 
     /// Parses and validates a case from TOML text.

@@ -2,6 +2,7 @@
 //! default. Unknown keys are rejected by serde; values are checked in
 //! [`super::validate`]. All quantities are SI.
 
+use super::shapes::{Role, ShapeConfig};
 use crate::physics::kernel::KernelChoice;
 use serde::{Deserialize, Serialize};
 
@@ -22,6 +23,9 @@ pub struct Case {
     pub tank: Vec<TankConfig>,
     #[serde(default)]
     pub wall: Vec<BoxConfig>,
+    /// Solids of any shape: fluid regions, walls and cuts ([`super::shapes`]).
+    #[serde(default)]
+    pub shape: Vec<ShapeConfig>,
     #[serde(default)]
     pub domain: Option<DomainConfig>,
     #[serde(default)]
@@ -427,6 +431,46 @@ pub struct DiagnosticsConfig {
     /// The point moments are taken about; default the origin.
     #[serde(default)]
     pub moment_point: Option<Vec<f64>>,
+    /// Reference scales of the force coefficients: with `loads`, each body's total
+    /// force also as `C = F / (½ ρ U² A)`, `A = L` per unit width in 2D, `L²` in 3D.
+    #[serde(default)]
+    pub reference: Option<ReferenceConfig>,
+    /// Pressure sensors as built: faces on a wall, averaged over their area and
+    /// optionally low-pass filtered ([`crate::diagnostics::sensors`]).
+    #[serde(default)]
+    pub sensors: Vec<SensorConfig>,
+}
+
+/// The scales of the force coefficients.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceConfig {
+    /// U [m/s].
+    pub velocity: f64,
+    /// L [m].
+    pub length: f64,
+    /// ρ [kg/m³]; default the fluid's ρ0.
+    #[serde(default)]
+    pub density: Option<f64>,
+}
+
+/// A face sensor: columns `<name>_pressure` (the face average), `<name>_point` (the
+/// point value at its centre) and, with a cut-off, `<name>_filtered`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SensorConfig {
+    pub name: String,
+    /// Centre of the face, on the wall [m].
+    pub centre: Vec<f64>,
+    /// Normal of the face (either sense).
+    pub normal: Vec<f64>,
+    /// Size of the face [m]: the length of the segment (2D), the diameter of the disc
+    /// (3D), across the normal.
+    pub size: f64,
+    /// Cut-off frequency [Hz] of the second-order Butterworth low-pass filter run at
+    /// the series interval (below its Nyquist frequency); none by default.
+    #[serde(default)]
+    pub cutoff: Option<f64>,
 }
 
 /// What a run writes besides snapshots and the time series.
@@ -440,8 +484,8 @@ pub struct OutputConfig {
 }
 
 impl Case {
-    /// The bodies' names in build order, tanks then walls, each with the key that sets
-    /// it (`tank[k].name`; the default `tank<k>`, `wall<k>`).
+    /// The bodies' names in build order, tanks, walls, then wall shapes, each with the
+    /// key that sets it (`tank[k].name`; the default `tank<k>`, `wall<k>`, `shape<k>`).
     pub fn body_names(&self) -> Vec<(String, String)> {
         let tanks = self.tank.iter().enumerate().map(|(k, t)| {
             (
@@ -455,7 +499,25 @@ impl Case {
                 w.name.clone().unwrap_or(format!("wall{k}")),
             )
         });
-        tanks.chain(walls).collect()
+        let shapes = self
+            .shape
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.role == Role::Wall)
+            .map(|(k, s)| {
+                (
+                    format!("shape[{k}].name"),
+                    s.name.clone().unwrap_or(format!("shape{k}")),
+                )
+            });
+        tanks.chain(walls).chain(shapes).collect()
+    }
+
+    /// `½ ρ U² A` of the force coefficients, when the case gives reference scales.
+    pub fn dynamic_force(&self) -> Option<f64> {
+        let r = self.diagnostics.reference.as_ref()?;
+        let rho = r.density.unwrap_or(self.fluid.density);
+        Some(0.5 * rho * r.velocity * r.velocity * r.length.powi(self.dimension as i32 - 1))
     }
 
     /// The point loads' moments are taken about (the origin by default).
@@ -464,6 +526,17 @@ impl Case {
             .moment_point
             .clone()
             .unwrap_or_else(|| vec![0.0; self.dimension])
+    }
+
+    /// Interval of the time-series rows: `diagnostics.interval`, else a tenth of the
+    /// snapshot interval, else a 200th of the run.
+    pub fn series_interval(&self) -> f64 {
+        let snapshots = self.time.output_interval;
+        self.diagnostics.interval.unwrap_or(if snapshots > 0.0 {
+            snapshots / 10.0
+        } else {
+            self.time.end / 200.0
+        })
     }
 
     /// Initial particle spacing Δx.

@@ -4,6 +4,7 @@
 //! ([`crate::geometry`]).
 
 use super::schema::*;
+use super::shapes::Role;
 use crate::error::{Result, SphError};
 
 /// The most particles a case may ask for: 2^30, beyond the memory of any one machine
@@ -39,12 +40,16 @@ impl Case {
         if let Some(u) = self.fluid.max_velocity {
             non_negative("fluid.max_velocity", u)?;
         }
-        if self.fluid_block.is_empty() {
+        let fluid_shapes = self.shape.iter().filter(|s| s.role == Role::Fluid);
+        if self.fluid_block.is_empty() && fluid_shapes.count() == 0 {
             return Err(SphError::invalid(
                 "fluid_block",
                 "[]",
-                "at least one [[fluid_block]]",
+                "at least one [[fluid_block]] or [[shape]] with role = \"fluid\"",
             ));
+        }
+        for (k, shape) in self.shape.iter().enumerate() {
+            self.check_shape(k, shape)?;
         }
         for (k, b) in self.fluid_block.iter().enumerate() {
             check_box(&format!("fluid_block[{k}]"), &b.lo, &b.hi, d)?;
@@ -180,6 +185,16 @@ impl Case {
         if let Some(c) = &self.diagnostics.moment_point {
             components("diagnostics.moment_point", c, d)?;
         }
+        if let Some(r) = &self.diagnostics.reference {
+            positive("diagnostics.reference.velocity", r.velocity)?;
+            positive("diagnostics.reference.length", r.length)?;
+            if let Some(rho) = r.density {
+                positive("diagnostics.reference.density", rho)?;
+            }
+        }
+        for k in 0..self.diagnostics.sensors.len() {
+            self.check_sensor(k)?;
+        }
         self.check_body_names()?;
         if let Some(a) = self.diagnostics.surge_front_axis {
             if a >= d {
@@ -212,6 +227,54 @@ impl Case {
                     key,
                     format!("{name:?}"),
                     format!("a name no other body has ({other} has it)"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A sensor needs a plain name of its own, a face of positive size with a normal,
+    /// and a cut-off below the Nyquist frequency of the series it is filtered at.
+    fn check_sensor(&self, k: usize) -> Result<()> {
+        let sensors = &self.diagnostics.sensors;
+        let s = &sensors[k];
+        let key = |what: &str| format!("diagnostics.sensors[{k}].{what}");
+        let plain = s
+            .name
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_alphabetic())
+            && s.name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !plain || sensors[..k].iter().any(|o| o.name == s.name) {
+            return Err(SphError::invalid(
+                key("name"),
+                format!("{:?}", s.name),
+                "a name no other sensor has: a letter, then letters, digits or _",
+            ));
+        }
+        components(&key("centre"), &s.centre, self.dimension)?;
+        components(&key("normal"), &s.normal, self.dimension)?;
+        if s.normal.iter().all(|&c| c == 0.0) {
+            return Err(SphError::invalid(
+                key("normal"),
+                format!("{:?}", s.normal),
+                "a non-zero normal of the face",
+            ));
+        }
+        positive(&key("size"), s.size)?;
+        if let Some(f) = s.cutoff {
+            let nyquist = 0.5 / self.series_interval();
+            if !(f > 0.0 && f < nyquist) {
+                return Err(SphError::invalid(
+                    key("cutoff"),
+                    f,
+                    format!(
+                        "a frequency in (0, {nyquist}) Hz: below the Nyquist frequency of the \
+                         series it filters (diagnostics.interval = {} s)",
+                        self.series_interval()
+                    ),
                 ));
             }
         }
@@ -356,7 +419,7 @@ fn plain_file_name(key: &str, name: &str) -> Result<()> {
     Ok(())
 }
 
-fn positive(key: &str, v: f64) -> Result<()> {
+pub(super) fn positive(key: &str, v: f64) -> Result<()> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
@@ -364,7 +427,7 @@ fn positive(key: &str, v: f64) -> Result<()> {
     }
 }
 
-fn non_negative(key: &str, v: f64) -> Result<()> {
+pub(super) fn non_negative(key: &str, v: f64) -> Result<()> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
@@ -372,7 +435,7 @@ fn non_negative(key: &str, v: f64) -> Result<()> {
     }
 }
 
-fn finite(key: &str, v: f64) -> Result<()> {
+pub(super) fn finite(key: &str, v: f64) -> Result<()> {
     if v.is_finite() {
         Ok(())
     } else {
@@ -380,7 +443,7 @@ fn finite(key: &str, v: f64) -> Result<()> {
     }
 }
 
-fn components(key: &str, v: &[f64], d: usize) -> Result<()> {
+pub(super) fn components(key: &str, v: &[f64], d: usize) -> Result<()> {
     if v.len() != d {
         return Err(SphError::invalid(
             key,
@@ -398,7 +461,7 @@ fn components(key: &str, v: &[f64], d: usize) -> Result<()> {
     Ok(())
 }
 
-fn check_box(key: &str, lo: &[f64], hi: &[f64], d: usize) -> Result<()> {
+pub(super) fn check_box(key: &str, lo: &[f64], hi: &[f64], d: usize) -> Result<()> {
     components(&format!("{key}.lo"), lo, d)?;
     components(&format!("{key}.hi"), hi, d)?;
     if lo.iter().zip(hi).any(|(a, b)| b <= a) {

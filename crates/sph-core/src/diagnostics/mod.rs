@@ -6,10 +6,12 @@
 //!   semi-discrete equations; otherwise it changes by `∫ (P_V + P_D) dt`.
 //! - Probes interpolate the fluid pressure with a Shepard-normalised kernel sum,
 //!   `p(x) = Σ_f p_f W(x - x_f) V_f / Σ_f W(x - x_f) V_f` (0 where no fluid is in reach).
+//! - Face sensors on the walls, averaged and low-pass filtered ([`sensors`]).
 //! - The stability guard ([`guard`]) and the count of fluid inside walls ([`crossings`]).
 
 mod crossings;
 mod guard;
+pub mod sensors;
 
 pub use crossings::wall_crossings;
 pub use guard::find_instability;

@@ -1,6 +1,7 @@
 //! Checks on the built particles: no fluid inside a wall or doubled by overlapping
 //! blocks, and probes where fluid can reach.
 
+use super::regions::Shapes;
 use super::vector;
 use crate::case::Case;
 use crate::domain::Domain;
@@ -8,29 +9,56 @@ use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
 use std::collections::HashMap;
 
-/// No fluid particle may sit closer than Δx/2 to another particle: a fluid particle
-/// in a wall, or fluid blocks that overlap (doubled particles), is an input error.
-pub(super) fn check_overlap<const D: usize>(particles: &Particles<D>, dx: f64) -> Result<()> {
-    let cell = |x: &Vector<D>| -> [i64; D] { std::array::from_fn(|d| (x[d] / dx).floor() as i64) };
-    let mut cells: HashMap<[i64; D], Vec<usize>> = HashMap::new();
-    for i in 0..particles.len() {
-        cells.entry(cell(&particles.x[i])).or_default().push(i);
+/// The particles by cell of a uniform grid, for the searches of the checks here.
+pub(super) struct CellIndex<const D: usize> {
+    cell: f64,
+    cells: HashMap<[i64; D], Vec<usize>>,
+}
+
+impl<const D: usize> CellIndex<D> {
+    /// Indexes the particles for which `keep` holds, in cells of side `cell`.
+    pub fn new(particles: &Particles<D>, cell: f64, keep: impl Fn(usize) -> bool) -> Self {
+        let mut index = CellIndex {
+            cell,
+            cells: HashMap::new(),
+        };
+        for i in (0..particles.len()).filter(|&i| keep(i)) {
+            let key = index.key(&particles.x[i]);
+            index.cells.entry(key).or_default().push(i);
+        }
+        index
     }
-    let min = 0.5 * dx * (1.0 - 1e-6);
-    for i in (0..particles.len()).filter(|&i| particles.kind[i] == Kind::Fluid) {
-        let c = cell(&particles.x[i]);
-        for m in 0..3usize.pow(D as u32) {
+
+    fn key(&self, x: &Vector<D>) -> [i64; D] {
+        std::array::from_fn(|d| (x[d] / self.cell).floor() as i64)
+    }
+
+    /// The indexed particles in the 3^D cells around `x`: all those within one cell
+    /// side of it, and some further.
+    pub fn near(&self, x: &Vector<D>) -> impl Iterator<Item = usize> + '_ {
+        let c = self.key(x);
+        (0..3usize.pow(D as u32)).flat_map(move |m| {
             let mut key = c;
             let mut rem = m;
             for k in key.iter_mut() {
                 *k += (rem % 3) as i64 - 1;
                 rem /= 3;
             }
-            for &j in cells.get(&key).into_iter().flatten() {
-                let r = (particles.x[i] - particles.x[j]).norm();
-                if j != i && r < min {
-                    return Err(overlap_error(particles, i, j, r));
-                }
+            self.cells.get(&key).into_iter().flatten().copied()
+        })
+    }
+}
+
+/// No fluid particle may sit closer than Δx/2 to another particle: a fluid particle
+/// in a wall, or fluid blocks that overlap (doubled particles), is an input error.
+pub(super) fn check_overlap<const D: usize>(particles: &Particles<D>, dx: f64) -> Result<()> {
+    let index = CellIndex::new(particles, dx, |_| true);
+    let min = 0.5 * dx * (1.0 - 1e-6);
+    for i in (0..particles.len()).filter(|&i| particles.kind[i] == Kind::Fluid) {
+        for j in index.near(&particles.x[i]) {
+            let r = (particles.x[i] - particles.x[j]).norm();
+            if j != i && r < min {
+                return Err(overlap_error(particles, i, j, r));
             }
         }
     }
@@ -54,7 +82,11 @@ fn overlap_error<const D: usize>(p: &Particles<D>, i: usize, j: usize, r: f64) -
 
 /// A probe must lie where fluid can be: inside the domain along its open directions and
 /// not deeper than the kernel support inside a wall, or it can never read a pressure.
-pub(super) fn check_probes<const D: usize>(case: &Case, domain: &Domain<D>) -> Result<()> {
+pub(super) fn check_probes<const D: usize>(
+    case: &Case,
+    domain: &Domain<D>,
+    shapes: &Shapes,
+) -> Result<()> {
     let support = case.support();
     for (k, probe) in case.diagnostics.probes.iter().enumerate() {
         let x: Vector<D> = vector(probe);
@@ -66,7 +98,7 @@ pub(super) fn check_probes<const D: usize>(case: &Case, domain: &Domain<D>) -> R
                 domain.hi.as_slice()
             ))
         } else {
-            buried_in_wall(case, &x, support).map(|wall| {
+            buried_in_wall(case, shapes, &x, support).map(|wall| {
                 format!("a point fluid can reach, not deeper than the kernel support inside {wall}")
             })
         };
@@ -81,8 +113,14 @@ pub(super) fn check_probes<const D: usize>(case: &Case, domain: &Domain<D>) -> R
     Ok(())
 }
 
-/// The wall (`tank[k]` or `wall[k]`) inside which `x` lies deeper than `depth`.
-fn buried_in_wall<const D: usize>(case: &Case, x: &Vector<D>, depth: f64) -> Option<String> {
+/// The wall (`tank[k]`, `wall[k]` or `shape[k]`) inside which `x` lies deeper than
+/// `depth`.
+fn buried_in_wall<const D: usize>(
+    case: &Case,
+    shapes: &Shapes,
+    x: &Vector<D>,
+    depth: f64,
+) -> Option<String> {
     let inside = |lo: &Vector<D>, hi: &Vector<D>| (0..D).all(|d| x[d] > lo[d] && x[d] < hi[d]);
     for (k, t) in case.tank.iter().enumerate() {
         let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
@@ -103,5 +141,9 @@ fn buried_in_wall<const D: usize>(case: &Case, x: &Vector<D>, depth: f64) -> Opt
             return Some(format!("wall[{k}]"));
         }
     }
-    None
+    shapes
+        .walls
+        .iter()
+        .find(|(_, solid)| solid.signed_distance(x.as_slice()) < -depth)
+        .map(|(k, _)| format!("shape[{k}]"))
 }

@@ -10,6 +10,11 @@
 mod checks;
 pub mod initial_field;
 mod lattice;
+mod regions;
+mod report;
+pub mod solid;
+
+pub use report::Region;
 
 use crate::boundary::bodies::Body;
 use crate::case::{Case, InitialField};
@@ -17,6 +22,7 @@ use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
+use regions::Shapes;
 
 /// Everything the case fixes before the first step.
 pub struct Setup<const D: usize> {
@@ -26,6 +32,8 @@ pub struct Setup<const D: usize> {
     pub gravity: Vector<D>,
     /// The tanks and walls, by the ids of their particles.
     pub bodies: Vec<Body>,
+    /// Every fluid region and wall, by the ids of its particles, in build order.
+    pub regions: Vec<Region>,
 }
 
 pub(super) fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
@@ -46,42 +54,32 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
     let rho0 = case.fluid.density;
     let volume = dx.powi(D as i32);
 
-    let mut fluid: Vec<(Vector<D>, Vector<D>, usize)> = Vec::new();
-    for (k, b) in case.fluid_block.iter().enumerate() {
-        let points = lattice::block_points::<D>(b, dx);
-        if points.is_empty() {
-            return Err(SphError::invalid(
-                format!("fluid_block[{k}]"),
-                format!("lo = {:?}, hi = {:?}", b.lo, b.hi),
-                format!("a box at least one spacing ({dx} m) wide along every axis"),
-            ));
-        }
-        let u: Vector<D> = b
-            .velocity
-            .as_deref()
-            .map(vector)
-            .unwrap_or_else(Vector::zeros);
-        fluid.extend(points.into_iter().map(|x| (x, u, k)));
-    }
+    let shapes = Shapes::build(case)?;
+    let (regions, fluid) = fluid_points::<D>(case, &shapes, &gravity)?;
 
     let eos = LinearEos {
         rho0,
-        c0: sound_speed(case, &fluid, &gravity, dx)?,
+        c0: sound_speed(case, &regions, &fluid, &gravity, dx)?,
         background: case.fluid.background_pressure,
     };
     let mut particles = Particles::default();
-    for &(x, mut u, k) in &fluid {
-        let b = &case.fluid_block[k];
+    let mut built = Vec::new();
+    for (k, region) in regions.iter().enumerate() {
+        let first = particles.next_id + fluid.iter().take_while(|(_, j)| *j < k).count() as u32;
+        let count = fluid.iter().filter(|(_, j)| *j == k).count() as u32;
+        built.push(Region {
+            key: region.key.clone(),
+            name: None,
+            kind: Kind::Fluid,
+            ids: first..first + count,
+        });
+    }
+    for &(x, k) in &fluid {
+        let region = &regions[k];
+        let mut u = region.velocity;
         let mut p = 0.0;
-        if b.hydrostatic.unwrap_or(true) {
+        if let Some(top) = region.top {
             // p = ρ0 (s_top - s(x)), s(x) = -g·x the height times |g|
-            let top = match b.surface {
-                Some(height) => height * gravity.norm(),
-                None => lattice::corners(&vector(&b.lo), &vector(&b.hi))
-                    .iter()
-                    .map(|c| -gravity.dot(c))
-                    .fold(f64::MIN, f64::max),
-            };
             p = rho0 * (top + gravity.dot(&x));
         }
         if let Some(field) = &case.initial {
@@ -92,15 +90,22 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
     }
 
     let mut bodies = Vec::new();
-    for ((_, name), points) in case
-        .body_names()
-        .into_iter()
-        .zip(lattice::wall_points::<D>(case))
-    {
+    let mut walls = lattice::wall_points::<D>(case);
+    for (k, solid) in &shapes.walls {
+        let points = regions::wall_points::<D>(case, *k, solid)?;
+        walls.push(points.into_iter().map(|x| (x, Vector::zeros())).collect());
+    }
+    for ((key, name), points) in case.body_names().into_iter().zip(walls) {
         let first = particles.next_id;
         for (x, u) in points {
             particles.push(Kind::Wall, x, u, rho0, rho0 * volume);
         }
+        built.push(Region {
+            key: key.trim_end_matches(".name").to_string(),
+            name: Some(name.clone()),
+            kind: Kind::Wall,
+            ids: first..particles.next_id,
+        });
         bodies.push(Body {
             name,
             ids: first..particles.next_id,
@@ -109,21 +114,119 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
     checks::check_overlap(&particles, dx)?;
     initial_field::check(case, &particles)?;
     let domain = domain_of(case, &particles)?;
-    checks::check_probes(case, &domain)?;
+    checks::check_probes(case, &domain, &shapes)?;
     Ok(Setup {
         particles,
         domain,
         eos,
         gravity,
         bodies,
+        regions: built,
     })
+}
+
+/// A fluid block or fluid shape: its initial velocity, and the height times |g| of
+/// the free surface its hydrostatic start hangs from (none: no hydrostatic start).
+struct FluidRegion<const D: usize> {
+    /// `fluid_block[k]` or `shape[k]`.
+    key: String,
+    velocity: Vector<D>,
+    top: Option<f64>,
+}
+
+impl<const D: usize> FluidRegion<D> {
+    /// `surface` when set, else the highest corner of the box `[lo, hi]` along -g.
+    fn new(
+        key: String,
+        velocity: Option<&[f64]>,
+        hydrostatic: Option<bool>,
+        surface: Option<f64>,
+        (lo, hi): (&Vector<D>, &Vector<D>),
+        gravity: &Vector<D>,
+    ) -> Self {
+        let top = hydrostatic.unwrap_or(true).then(|| match surface {
+            Some(height) => height * gravity.norm(),
+            None => lattice::corners(lo, hi)
+                .iter()
+                .map(|c| -gravity.dot(c))
+                .fold(f64::MIN, f64::max),
+        });
+        FluidRegion {
+            key,
+            velocity: velocity.map(vector).unwrap_or_else(Vector::zeros),
+            top,
+        }
+    }
+}
+
+/// Every fluid lattice point with the index of its region: the fluid blocks, then the
+/// fluid shapes, less what the cuts and wall shapes remove.
+#[allow(clippy::type_complexity)]
+fn fluid_points<const D: usize>(
+    case: &Case,
+    shapes: &Shapes,
+    gravity: &Vector<D>,
+) -> Result<(Vec<FluidRegion<D>>, Vec<(Vector<D>, usize)>)> {
+    let dx = case.dx();
+    let mut regions = Vec::new();
+    let mut fluid = Vec::new();
+    for (k, b) in case.fluid_block.iter().enumerate() {
+        let points = lattice::block_points::<D>(b, dx);
+        if points.is_empty() {
+            return Err(SphError::invalid(
+                format!("fluid_block[{k}]"),
+                format!("lo = {:?}, hi = {:?}", b.lo, b.hi),
+                format!("a box at least one spacing ({dx} m) wide along every axis"),
+            ));
+        }
+        let bounds = (&vector(&b.lo), &vector(&b.hi));
+        let region = FluidRegion::new(
+            format!("fluid_block[{k}]"),
+            b.velocity.as_deref(),
+            b.hydrostatic,
+            b.surface,
+            bounds,
+            gravity,
+        );
+        fluid.extend(points.into_iter().map(|x| (x, regions.len())));
+        regions.push(region);
+    }
+    for (k, solid) in &shapes.fluid {
+        let s = &case.shape[*k];
+        let points = regions::fluid_points::<D>(case, *k, solid)?;
+        let bounds = (&vector(&solid.lo), &vector(&solid.hi));
+        let region = FluidRegion::new(
+            format!("shape[{k}]"),
+            s.velocity.as_deref(),
+            s.hydrostatic,
+            s.surface,
+            bounds,
+            gravity,
+        );
+        fluid.extend(points.into_iter().map(|x| (x, regions.len())));
+        regions.push(region);
+    }
+    fluid.retain(|(x, _)| shapes.keeps_fluid(x, dx));
+    if fluid.is_empty() {
+        return Err(SphError::invalid(
+            "shape",
+            format!(
+                "{} cut and {} wall shapes",
+                shapes.cuts.len(),
+                shapes.walls.len()
+            ),
+            "shapes that leave some fluid (they remove every fluid particle)",
+        ));
+    }
+    Ok((regions, fluid))
 }
 
 /// c0 given, or `factor · max(U, sqrt(Δp/ρ0))` with H the fluid height along gravity,
 /// `U = max(|u0|, sqrt(2|g|H))` unless set, `Δp = ρ0|g|H`.
 fn sound_speed<const D: usize>(
     case: &Case,
-    fluid: &[(Vector<D>, Vector<D>, usize)],
+    regions: &[FluidRegion<D>],
+    fluid: &[(Vector<D>, usize)],
     gravity: &Vector<D>,
     dx: f64,
 ) -> Result<f64> {
@@ -132,12 +235,15 @@ fn sound_speed<const D: usize>(
     }
     let g = gravity.norm();
     let height = if g > 0.0 {
-        let s: Vec<f64> = fluid.iter().map(|(x, _, _)| -gravity.dot(x) / g).collect();
+        let s: Vec<f64> = fluid.iter().map(|(x, _)| -gravity.dot(x) / g).collect();
         s.iter().cloned().fold(f64::MIN, f64::max) - s.iter().cloned().fold(f64::MAX, f64::min) + dx
     } else {
         0.0
     };
-    let mut u0 = fluid.iter().map(|(_, u, _)| u.norm()).fold(0.0, f64::max);
+    let mut u0 = regions
+        .iter()
+        .map(|r| r.velocity.norm())
+        .fold(0.0, f64::max);
     if let Some(InitialField::TaylorGreen { amplitude, .. }) = &case.initial {
         u0 = u0.max(amplitude.abs());
     }

@@ -1,5 +1,7 @@
 //! What a run writes and reads back: the run folder with its snapshots, index, time
-//! series and manifest ([`output`]), and restart files ([`restart`]).
+//! series and manifest ([`output`]), restart files ([`restart`]), and the preview of a
+//! case's initial particles ([`preview`]).
 
 pub mod output;
+pub mod preview;
 pub mod restart;

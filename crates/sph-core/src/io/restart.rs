@@ -116,6 +116,13 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
             .create("energy_budget")?
             .write_raw(&v)?;
     }
+    if !c.sensor_filters.is_empty() {
+        let v: Vec<f64> = c.sensor_filters.iter().flatten().copied().collect();
+        file.new_attr::<f64>()
+            .shape(v.len())
+            .create("sensor_filters")?
+            .write_raw(&v)?;
+    }
     crate::io::output::snapshot::write_creator(&file)?;
     file.close()
 }
@@ -251,6 +258,7 @@ impl Reader<'_> {
             last_acceleration: self.attr("last_acceleration")?,
             budget: self.budget()?,
             shift_velocity,
+            sensor_filters: self.sensor_filters()?,
         };
         let schedule = Schedule {
             next_snapshot: self.attr("next_snapshot")?,
@@ -260,6 +268,22 @@ impl Reader<'_> {
             initial_energy: self.attr("initial_energy")?,
         };
         Ok((checkpoint, schedule))
+    }
+
+    fn sensor_filters(&self) -> Result<Vec<[f64; 4]>> {
+        let Ok(a) = self.file.attr("sensor_filters") else {
+            return Ok(Vec::new());
+        };
+        let v: Vec<f64> = a
+            .read_raw()
+            .map_err(|e| self.corrupt(format!("attribute sensor_filters ({e})")))?;
+        if !v.len().is_multiple_of(4) {
+            return Err(self.corrupt(format!(
+                "sensor_filters holds {} values, not 4 a filter",
+                v.len()
+            )));
+        }
+        Ok(v.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect())
     }
 
     fn budget(&self) -> Result<Option<EnergyBudget>> {

@@ -22,6 +22,8 @@ pub struct Checkpoint<const D: usize> {
     pub last_acceleration: f64,
     pub budget: Option<EnergyBudget>,
     pub shift_velocity: Option<Vec<Vector<D>>>,
+    /// The state of each filtered sensor's low-pass filter, in sensor order.
+    pub sensor_filters: Vec<[f64; 4]>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -40,6 +42,11 @@ impl<const D: usize> Simulation<D> {
             last_acceleration: self.last_acceleration,
             budget: self.budget,
             shift_velocity: self.shift_velocity.clone(),
+            sensor_filters: self
+                .sensors
+                .iter()
+                .filter_map(|s| s.filter.map(|f| f.state))
+                .collect(),
         })
     }
 
@@ -74,6 +81,14 @@ impl<const D: usize> Simulation<D> {
                 }
             }
             sim.shift_velocity = c.shift_velocity;
+        }
+        let filtered = sim.sensors.iter().filter(|s| s.filter.is_some()).count();
+        if filtered != c.sensor_filters.len() {
+            return Err(corrupt("its sensor filters do not match its case"));
+        }
+        let filters = sim.sensors.iter_mut().filter_map(|s| s.filter.as_mut());
+        for (filter, state) in filters.zip(&c.sensor_filters) {
+            filter.state = *state;
         }
         let support = sim.model.support_radius();
         sim.list = NeighbourList::restore(

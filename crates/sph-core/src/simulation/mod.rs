@@ -10,6 +10,7 @@ pub use checkpoint::Checkpoint;
 
 use crate::boundary::bodies::{body_of, Body, Load};
 use crate::case::{Case, IntegratorChoice, ShiftingChoice};
+use crate::diagnostics::sensors::Sensor;
 use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
@@ -93,6 +94,8 @@ pub struct Simulation<const D: usize> {
     max_skin: f64,
     last_acceleration: f64,
     bodies: Vec<Body>,
+    /// The face sensors of the series, with their filters' state.
+    sensors: Vec<Sensor<D>>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -129,6 +132,9 @@ impl<const D: usize> Simulation<D> {
         let budget = case.diagnostics.energy_budget.then(EnergyBudget::default);
         let shift_velocity = (case.scheme.shifting == ShiftingChoice::DeltaPlus)
             .then(|| vec![Vector::zeros(); setup.particles.len()]);
+        let sensors = (case.diagnostics.sensors.iter())
+            .map(|s| Sensor::new(s, case.dx(), case.series_interval()))
+            .collect();
         let mut sim = Self {
             case,
             particles: setup.particles,
@@ -145,6 +151,7 @@ impl<const D: usize> Simulation<D> {
             max_skin,
             last_acceleration: 0.0,
             bodies: setup.bodies,
+            sensors,
         };
         sim.rebuild(0.0);
         sim.state_changed();

@@ -26,18 +26,26 @@ impl<const D: usize> Simulation<D> {
         h.push("max_density_variation".into());
         h.push("removed".into());
         h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
+        for s in &self.sensors {
+            h.extend([format!("{}_pressure", s.name), format!("{}_point", s.name)]);
+            if s.filter.is_some() {
+                h.push(format!("{}_filtered", s.name));
+            }
+        }
         if diag.surge_front_axis.is_some() {
             h.push("surge_front".into());
         }
         if diag.loads {
+            let coefficients = self.case.dynamic_force().is_some();
             for b in &self.bodies {
-                h.extend(load_columns(&b.name, D));
+                h.extend(load_columns(&b.name, D, coefficients));
             }
         }
         h
     }
 
-    /// One row matching [`Self::series_header`]; refreshes pressures when probes need them.
+    /// One row matching [`Self::series_header`]; refreshes pressures when probes need
+    /// them, and advances the sensors' filters by one reading.
     pub fn series_values(&mut self) -> Vec<f64> {
         let diag = self.case.diagnostics.clone();
         let mut v = vec![self.time, self.counters.steps as f64, self.dt];
@@ -56,23 +64,36 @@ impl<const D: usize> Simulation<D> {
         }
         v.push(self.max_density_variation());
         v.push(self.counters.removed as f64);
-        if !diag.probes.is_empty() {
+        if !diag.probes.is_empty() || !self.sensors.is_empty() {
             self.sync_pressure();
             for probe in &diag.probes {
                 let point = Vector::<D>::from_fn(|d, _| probe[d]);
                 v.push(self.probe_pressure(&point));
             }
         }
+        let mut sensors = std::mem::take(&mut self.sensors);
+        for s in &mut sensors {
+            let face = s.average(|x| self.probe_pressure(x));
+            v.extend([face, self.probe_pressure(&s.centre)]);
+            if let Some(filter) = &mut s.filter {
+                v.push(filter.push(face));
+            }
+        }
+        self.sensors = sensors;
         if let Some(axis) = diag.surge_front_axis {
             v.push(self.surge_front(axis));
         }
         if diag.loads {
+            let dynamic = self.case.dynamic_force();
             for load in self.loads() {
                 v.extend(load.pressure.iter().chain(load.viscous.iter()));
                 if D == 2 {
                     v.push(load.moment[2]);
                 } else {
                     v.extend(load.moment.iter());
+                }
+                if let Some(q) = dynamic {
+                    v.extend(load.force().iter().map(|f| f / q));
                 }
             }
         }
@@ -81,14 +102,20 @@ impl<const D: usize> Simulation<D> {
 }
 
 /// A body's load columns: `<name>_pressure_fx …`, `<name>_viscous_fx …`, then the
-/// moment (`<name>_moment_z` in 2D, `_x _y _z` in 3D).
-fn load_columns(name: &str, dim: usize) -> Vec<String> {
+/// moment (`<name>_moment_z` in 2D, `_x _y _z` in 3D), then with reference scales the
+/// force coefficients `<name>_cx …` of the total force.
+fn load_columns(name: &str, dim: usize, coefficients: bool) -> Vec<String> {
     let axes = &["x", "y", "z"][..dim];
     let forces = ["pressure", "viscous"]
         .iter()
         .flat_map(|part| axes.iter().map(move |a| format!("{name}_{part}_f{a}")));
     let moments: &[&str] = if dim == 2 { &["z"] } else { &["x", "y", "z"] };
+    let coefficients = axes
+        .iter()
+        .filter(|_| coefficients)
+        .map(|a| format!("{name}_c{a}"));
     forces
         .chain(moments.iter().map(|a| format!("{name}_moment_{a}")))
+        .chain(coefficients)
         .collect()
 }

@@ -132,8 +132,15 @@ impl Output {
 
     /// Writes a text file atomically inside the folder.
     pub fn write_text(&mut self, name: &str, text: &str) -> Result<()> {
+        self.write_bytes(name, text.as_bytes()).map(|_| ())
+    }
+
+    /// Writes a file atomically inside the folder; returns its path.
+    pub fn write_bytes(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf> {
         self.manifest.claim(name)?;
-        atomic::write(&self.dir.join(name), |tmp| fs::write(tmp, text))
+        let path = self.dir.join(name);
+        atomic::write(&path, |tmp| fs::write(tmp, bytes))?;
+        Ok(path)
     }
 
     fn write_index(&mut self) -> Result<()> {

@@ -1,0 +1,236 @@
+//! The `[[shape]]` table: a solid of any shape (a polygon, an STL surface, a circle,
+//! sphere, cylinder or box) and the role it plays in the case: fluid filled on the
+//! lattice, a wall of dummy particles, or a hole cut out of the fluid. Its geometry is
+//! built and checked in [`crate::geometry::solid`].
+
+use super::schema::Case;
+use super::validate::{check_box, components, finite, positive};
+use crate::error::{Result, SphError};
+use serde::{Deserialize, Serialize};
+
+/// What a shape is in the case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// Fluid on the lattice points inside the solid, hydrostatic by default.
+    Fluid,
+    /// Dummy wall particles on the lattice points inside the solid, down to `layers`
+    /// spacings below its surface. The fluid it overlaps is removed, to half a spacing
+    /// from its surface.
+    Wall,
+    /// Removes the fluid of every fluid block and fluid shape inside it.
+    Cut,
+}
+
+/// A disc (2D) or ball (3D).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BallConfig {
+    pub centre: Vec<f64>,
+    pub radius: f64,
+}
+
+/// A circular cylinder (3D) between the centres of its two end faces.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderConfig {
+    pub base: Vec<f64>,
+    pub top: Vec<f64>,
+    pub radius: f64,
+}
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CuboidConfig {
+    pub lo: Vec<f64>,
+    pub hi: Vec<f64>,
+}
+
+/// One `[[shape]]`: exactly one of the geometry keys (`polygon`, `file`, `circle`,
+/// `sphere`, `cylinder`, `box`) and the keys of its role.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShapeConfig {
+    pub role: Role,
+    /// 2D: the vertices of a closed polygon, `[[x, y], ...]`, in either winding; the
+    /// last vertex joins the first.
+    #[serde(default)]
+    pub polygon: Option<Vec<Vec<f64>>>,
+    /// A file: `.stl` (3D, ASCII or binary, closed and outward-facing), or (2D) a
+    /// vertex list, one `x y` or `x, y` pair a line, `#` comments. A relative path is
+    /// taken from the case file's folder.
+    #[serde(default)]
+    pub file: Option<String>,
+    /// 2D disc.
+    #[serde(default)]
+    pub circle: Option<BallConfig>,
+    /// 3D ball.
+    #[serde(default)]
+    pub sphere: Option<BallConfig>,
+    /// 3D cylinder.
+    #[serde(default)]
+    pub cylinder: Option<CylinderConfig>,
+    /// Axis-aligned box (2D or 3D).
+    #[serde(default, rename = "box")]
+    pub cuboid: Option<CuboidConfig>,
+    /// Factor from the file's or polygon's units to metres (0.001 for millimetres);
+    /// default 1.
+    #[serde(default)]
+    pub scale: Option<f64>,
+    /// Name of the body in the loads' columns (walls only; default `shape<k>`).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Wall layers (walls only): default the fewest that cover the kernel support.
+    #[serde(default)]
+    pub layers: Option<usize>,
+    /// Initial velocity (fluid only).
+    #[serde(default)]
+    pub velocity: Option<Vec<f64>>,
+    /// Hydrostatic start from the shape's top, or from `surface` (fluid only; default true).
+    #[serde(default)]
+    pub hydrostatic: Option<bool>,
+    /// Height (along -g) of the free surface of the hydrostatic start (fluid only).
+    #[serde(default)]
+    pub surface: Option<f64>,
+}
+
+impl ShapeConfig {
+    /// The geometry keys that are set.
+    pub fn geometry_keys(&self) -> Vec<&'static str> {
+        [
+            ("polygon", self.polygon.is_some()),
+            ("file", self.file.is_some()),
+            ("circle", self.circle.is_some()),
+            ("sphere", self.sphere.is_some()),
+            ("cylinder", self.cylinder.is_some()),
+            ("box", self.cuboid.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(key, set)| set.then_some(key))
+        .collect()
+    }
+
+    /// The scale factor in force (1 unless set).
+    pub fn scale(&self) -> f64 {
+        self.scale.unwrap_or(1.0)
+    }
+}
+
+impl Case {
+    /// The checks of one `[[shape]]` that need no file: one geometry of the case's
+    /// dimension, positive sizes, and only the keys of its role.
+    pub(super) fn check_shape(&self, k: usize, s: &ShapeConfig) -> Result<()> {
+        let key = format!("shape[{k}]");
+        let d = self.dimension;
+        let geometry = s.geometry_keys();
+        if geometry.len() != 1 {
+            return Err(SphError::invalid(
+                &key,
+                format!("{geometry:?}"),
+                "exactly one of polygon, file, circle, sphere, cylinder, box",
+            ));
+        }
+        let only = |what: &str, dim: usize| -> Result<()> {
+            if d == dim {
+                return Ok(());
+            }
+            Err(SphError::invalid(
+                format!("{key}.{what}"),
+                "(set)",
+                format!("a shape of a {d}D case ({what} is {dim}D only)"),
+            ))
+        };
+        if let Some(vertices) = &s.polygon {
+            only("polygon", 2)?;
+            for (i, v) in vertices.iter().enumerate() {
+                components(&format!("{key}.polygon[{i}]"), v, 2)?;
+            }
+        }
+        if let Some(c) = &s.circle {
+            only("circle", 2)?;
+            components(&format!("{key}.circle.centre"), &c.centre, 2)?;
+            positive(&format!("{key}.circle.radius"), c.radius)?;
+        }
+        if let Some(b) = &s.sphere {
+            only("sphere", 3)?;
+            components(&format!("{key}.sphere.centre"), &b.centre, 3)?;
+            positive(&format!("{key}.sphere.radius"), b.radius)?;
+        }
+        if let Some(c) = &s.cylinder {
+            only("cylinder", 3)?;
+            components(&format!("{key}.cylinder.base"), &c.base, 3)?;
+            components(&format!("{key}.cylinder.top"), &c.top, 3)?;
+            positive(&format!("{key}.cylinder.radius"), c.radius)?;
+            if c.base == c.top {
+                return Err(SphError::invalid(
+                    format!("{key}.cylinder.top"),
+                    format!("{:?}", c.top),
+                    "a point other than base (the axis runs from base to top)",
+                ));
+            }
+        }
+        if let Some(b) = &s.cuboid {
+            check_box(&format!("{key}.box"), &b.lo, &b.hi, d)?;
+        }
+        if let Some(f) = &s.file {
+            let stl = f.to_ascii_lowercase().ends_with(".stl");
+            only("file", if stl { 3 } else { 2 })?;
+        }
+        positive(&format!("{key}.scale"), s.scale())?;
+        self.check_role_keys(&key, s)
+    }
+
+    /// Walls take a name and layers, fluid a velocity and a hydrostatic start, cuts
+    /// neither.
+    fn check_role_keys(&self, key: &str, s: &ShapeConfig) -> Result<()> {
+        let wall_keys = [("name", s.name.is_some()), ("layers", s.layers.is_some())];
+        let fluid_keys = [
+            ("velocity", s.velocity.is_some()),
+            ("hydrostatic", s.hydrostatic.is_some()),
+            ("surface", s.surface.is_some()),
+        ];
+        let (wall_ok, fluid_ok) = (s.role == Role::Wall, s.role == Role::Fluid);
+        let misplaced = wall_keys
+            .iter()
+            .filter(|_| !wall_ok)
+            .chain(fluid_keys.iter().filter(|_| !fluid_ok))
+            .find(|(_, set)| *set);
+        if let Some((what, _)) = misplaced {
+            let role = format!("{:?}", s.role).to_lowercase();
+            return Err(SphError::invalid(
+                format!("{key}.{what}"),
+                "(set)",
+                format!(
+                    "no {what} for role = \"{role}\" (name and layers are for walls; velocity, \
+                     hydrostatic and surface for fluid)"
+                ),
+            ));
+        }
+        if let Some(v) = &s.velocity {
+            components(&format!("{key}.velocity"), v, self.dimension)?;
+        }
+        if let Some(h) = s.surface {
+            finite(&format!("{key}.surface"), h)?;
+        }
+        let need = self.min_wall_layers();
+        match s.layers {
+            Some(n) if n < need => Err(SphError::invalid(
+                format!("{key}.layers"),
+                n,
+                format!(
+                    "at least {need} layers: layers·Δx must cover the kernel support R = {:.4} m",
+                    self.support()
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+impl ShapeConfig {
+    /// Wall layers of this shape: as given, or [`Case::min_wall_layers`].
+    pub fn layer_count(&self, case: &Case) -> usize {
+        self.layers.unwrap_or_else(|| case.min_wall_layers())
+    }
+}

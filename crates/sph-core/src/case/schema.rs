@@ -207,6 +207,20 @@ pub enum InitialField {
         length: f64,
         depth: f64,
     },
+    /// Fields from expressions of the position (`x`, `y`, `z`), the named `constants`,
+    /// `rho0` and `g` (|gravity|): the velocity components `u` and the pressure `p` or
+    /// the density `rho`; what is not given stays as the fluid regions set it
+    /// ([`crate::geometry`]).
+    Expressions {
+        #[serde(default)]
+        constants: Option<std::collections::BTreeMap<String, f64>>,
+        #[serde(default)]
+        u: Option<Vec<String>>,
+        #[serde(default)]
+        p: Option<String>,
+        #[serde(default)]
+        rho: Option<String>,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

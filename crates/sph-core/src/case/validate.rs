@@ -162,6 +162,33 @@ impl Case {
                     ));
                 }
             }
+            Some(InitialField::Expressions {
+                constants,
+                u,
+                p,
+                rho,
+                ..
+            }) => {
+                if let Some(u) = u {
+                    if u.len() != d {
+                        return Err(SphError::invalid(
+                            "initial.u",
+                            format!("{u:?}"),
+                            format!("{d} expressions, one per velocity component"),
+                        ));
+                    }
+                }
+                if p.is_some() && rho.is_some() {
+                    return Err(SphError::invalid(
+                        "initial.rho",
+                        "(set with initial.p)",
+                        "either a pressure or a density expression, not both",
+                    ));
+                }
+                for (name, value) in constants.iter().flatten() {
+                    finite(&format!("initial.constants.{name}"), *value)?;
+                }
+            }
             None => {}
         }
         self.check_particle_count()?;

@@ -1,6 +1,7 @@
 //! Analytic initial fields laid over the fluid blocks: the Taylor-Green vortex, the
 //! elliptic drop, the rotating square patch and the linear standing wave, and the
-//! check that a field fits the fluid it fills.
+//! check that a field fits the fluid it fills. Fields from expressions are in
+//! [`super::expressions`].
 
 use crate::case::{Case, InitialField};
 use crate::error::{Result, SphError};
@@ -57,6 +58,8 @@ pub(super) fn value<const D: usize>(
             u[1] = bk * (k * x[1]).sinh() * (k * x[0]).cos();
             hydrostatic
         }
+        // evaluated by [`super::expressions`], which the build asks first
+        InitialField::Expressions { .. } => hydrostatic,
     };
     (u, p)
 }
@@ -151,7 +154,8 @@ pub(super) fn check<const D: usize>(case: &Case, particles: &Particles<D>) -> Re
                 ));
             }
         }
-        None => {}
+        // checked value by value as they are evaluated
+        Some(InitialField::Expressions { .. }) | None => {}
     }
     Ok(())
 }

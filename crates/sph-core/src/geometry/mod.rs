@@ -8,6 +8,7 @@
 //! [`initial_field`]); the lattice of blocks and walls is [`lattice`].
 
 mod checks;
+mod expressions;
 pub mod initial_field;
 mod lattice;
 mod regions;
@@ -22,6 +23,7 @@ use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
+use expressions::ExpressionField;
 use regions::Shapes;
 
 /// Everything the case fixes before the first step.
@@ -57,9 +59,18 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
     let shapes = Shapes::build(case)?;
     let (regions, fluid) = fluid_points::<D>(case, &shapes, &gravity)?;
 
+    let expressions = ExpressionField::of(case, gravity.norm())?;
+    let mut field_speed = 0.0_f64;
+    if let Some(field) = &expressions {
+        for (x, _) in &fluid {
+            if let Some(u) = field.velocity(x)? {
+                field_speed = field_speed.max(u.norm());
+            }
+        }
+    }
     let eos = LinearEos {
         rho0,
-        c0: sound_speed(case, &regions, &fluid, &gravity, dx)?,
+        c0: sound_speed(case, &regions, &fluid, field_speed, &gravity, dx)?,
         background: case.fluid.background_pressure,
     };
     let mut particles = Particles::default();
@@ -82,10 +93,20 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
             // p = ρ0 (s_top - s(x)), s(x) = -g·x the height times |g|
             p = rho0 * (top + gravity.dot(&x));
         }
-        if let Some(field) = &case.initial {
-            (u, p) = initial_field::value(field, &x, rho0, gravity.norm(), p);
+        let mut rho = None;
+        match (&expressions, &case.initial) {
+            (Some(field), _) => {
+                u = field.velocity(&x)?.unwrap_or(u);
+                let (pressure, density) = field.state(&x)?;
+                p = pressure.unwrap_or(p);
+                rho = density;
+            }
+            (None, Some(field)) => {
+                (u, p) = initial_field::value(field, &x, rho0, gravity.norm(), p);
+            }
+            (None, None) => {}
         }
-        let rho = eos.density(p + eos.background);
+        let rho = rho.unwrap_or_else(|| eos.density(p + eos.background));
         particles.push(Kind::Fluid, x, u, rho, rho * volume);
     }
 
@@ -222,11 +243,13 @@ fn fluid_points<const D: usize>(
 }
 
 /// c0 given, or `factor · max(U, sqrt(Δp/ρ0))` with H the fluid height along gravity,
-/// `U = max(|u0|, sqrt(2|g|H))` unless set, `Δp = ρ0|g|H`.
+/// `U = max(|u0|, sqrt(2|g|H))` unless set, `Δp = ρ0|g|H`; `field_speed` is the
+/// largest speed of an expression field.
 fn sound_speed<const D: usize>(
     case: &Case,
     regions: &[FluidRegion<D>],
     fluid: &[(Vector<D>, usize)],
+    field_speed: f64,
     gravity: &Vector<D>,
     dx: f64,
 ) -> Result<f64> {
@@ -247,6 +270,7 @@ fn sound_speed<const D: usize>(
     if let Some(InitialField::TaylorGreen { amplitude, .. }) = &case.initial {
         u0 = u0.max(amplitude.abs());
     }
+    u0 = u0.max(field_speed);
     let u_max = case
         .fluid
         .max_velocity

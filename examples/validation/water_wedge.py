@@ -135,9 +135,6 @@ def main():
               f"observed orders {[round(o, 2) for o in orders]}")
     write_report(rows, convergence, resolutions)
     signals_plot(runs, resolutions)
-    np.savez_compressed(pathlib.Path("/tmp") / "water_wedge_signals.npz",
-                        **{f"{label}_{n}_{k}": v for (label, n), tp in runs.items()
-                           for k, v in zip("tp", tp)})
 
 
 def write_report(rows, convergence, resolutions):

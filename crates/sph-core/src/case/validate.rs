@@ -240,9 +240,7 @@ impl Case {
     fn check_body_names(&self) -> Result<()> {
         let names = self.body_names();
         for (k, (key, name)) in names.iter().enumerate() {
-            let plain = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
-                && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-            if !plain {
+            if !column_name(name) {
                 return Err(SphError::invalid(
                     key,
                     format!("{name:?}"),
@@ -266,15 +264,7 @@ impl Case {
         let sensors = &self.diagnostics.sensors;
         let s = &sensors[k];
         let key = |what: &str| format!("diagnostics.sensors[{k}].{what}");
-        let plain = s
-            .name
-            .chars()
-            .next()
-            .is_some_and(|c| c.is_ascii_alphabetic())
-            && s.name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_');
-        if !plain || sensors[..k].iter().any(|o| o.name == s.name) {
+        if !column_name(&s.name) || sensors[..k].iter().any(|o| o.name == s.name) {
             return Err(SphError::invalid(
                 key("name"),
                 format!("{:?}", s.name),
@@ -423,6 +413,12 @@ impl Case {
         }
         positive("scheme.force_cfl", s.force_cfl)
     }
+}
+
+/// A name that can head time-series columns: a letter, then letters, digits or `_`.
+fn column_name(name: &str) -> bool {
+    name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 /// A name that is one plain path component: not empty, no separator, not `.` or

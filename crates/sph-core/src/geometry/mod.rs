@@ -74,16 +74,21 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         background: case.fluid.background_pressure,
     };
     let mut particles = Particles::default();
+    // the fluid points come region by region: each region's ids are one range
+    let mut counts = vec![0u32; regions.len()];
+    for (_, k) in &fluid {
+        counts[*k] += 1;
+    }
     let mut built = Vec::new();
-    for (k, region) in regions.iter().enumerate() {
-        let first = particles.next_id + fluid.iter().take_while(|(_, j)| *j < k).count() as u32;
-        let count = fluid.iter().filter(|(_, j)| *j == k).count() as u32;
+    let mut first = particles.next_id;
+    for (region, count) in regions.iter().zip(counts) {
         built.push(Region {
             key: region.key.clone(),
             name: None,
             kind: Kind::Fluid,
             ids: first..first + count,
         });
+        first += count;
     }
     for &(x, k) in &fluid {
         let region = &regions[k];

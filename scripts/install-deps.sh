@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
-# Installs the system packages deltasph needs, with apt, when they are missing:
-# libhdf5 with its headers (always), and with --test what the tests use besides:
+# Installs what deltasph needs to build, when it is missing: CMake 3.26 or later (from
+# PyPI, as Debian 12's is older), which builds the HDF5 library linked into deltasph
+# (the hdf5-metno-src crate; a build with `--no-default-features` links the system's
+# libhdf5-dev instead); and with --test, with apt, what the tests use besides:
 # ParaView's Python reader (python3-paraview) and a virtual display (xvfb) to open and
 # render the output as a user would, and unshare (util-linux) for the full-disk test.
 set -euo pipefail
 want=()
-if ! pkg-config --exists hdf5 2>/dev/null && [ ! -f /usr/include/hdf5/serial/hdf5.h ]; then
-  want+=(libhdf5-dev pkg-config)
+cmake_ok() {
+  command -v cmake >/dev/null &&
+    printf '%s\n' 3.26 "$(cmake --version | sed -n 's/^cmake version //p')" | sort -V -C
+}
+if ! cmake_ok; then
+  echo "installing cmake>=3.26 (pip)" >&2
+  python3 -m pip install -q --disable-pip-version-check --root-user-action=ignore "cmake>=3.26,<4"
+  hash -r
 fi
 if [ "${1:-}" = "--test" ]; then
   command -v pvpython >/dev/null || want+=(python3-paraview)

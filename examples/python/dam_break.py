@@ -19,6 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import deltasph as ds  # noqa: E402
+from deltasph import plot  # noqa: E402
 
 HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "dam_break_2d.toml"
@@ -48,7 +49,10 @@ def main():
     out = new_folder(args.out)
     sim = ds.Simulation.from_toml(CASE)
     if args.spacing:
-        import tomllib
+        try:  # Python 3.11+
+            import tomllib
+        except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+            import tomli as tomllib
 
         config = tomllib.loads(sim.to_toml())
         config["particles"]["spacing"] = args.spacing
@@ -74,15 +78,9 @@ def main():
 
 
 def draw_pressure(ax, sim, t_star):
-    fluid = sim.kind == ds.FLUID
-    x, p = sim.positions, sim.pressure
-    walls = ~fluid
-    ax.scatter(x[walls, 0], x[walls, 1], s=1, c="0.6")
-    dots = ax.scatter(x[fluid, 0], x[fluid, 1], s=2, c=p[fluid] / (RHO0 * G * H),
-                      cmap="viridis", vmin=0.0, vmax=1.0)
-    ax.set_aspect("equal")
+    plot.snapshot(sim, "pressure", ax=ax, scale=1.0 / (RHO0 * G * H), label="p / ρ0 g H",
+                  vmin=0.0, vmax=1.0)
     ax.set_title(f"t·sqrt(g/H) = {t_star:.1f}")
-    plt.colorbar(dots, ax=ax, label="p / ρ0 g H")
 
 
 def plot_p1(times, p1, path):

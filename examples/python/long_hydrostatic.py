@@ -16,7 +16,10 @@ three against time.
 import argparse
 import datetime
 import pathlib
-import tomllib
+try:  # Python 3.11+
+    import tomllib
+except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+    import tomli as tomllib
 
 import matplotlib
 

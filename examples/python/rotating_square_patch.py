@@ -12,7 +12,10 @@ shifting the distribution stays regular.
 import argparse
 import datetime
 import pathlib
-import tomllib
+try:  # Python 3.11+
+    import tomllib
+except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+    import tomli as tomllib
 
 import matplotlib
 

@@ -108,7 +108,8 @@ def smooth(t, p, width=0.1):
 
 
 def p1_signal(sim, height):
-    """P1 (right wall, y = `height`) as p/ρ0gH every 0.01 t* to t* = 7."""
+    """P1 (right wall, y = `height`) as p/ρ0gH every 0.01 t* to t* = 7 (zero while the
+    probe is dry)."""
     H, g, rho0 = 0.6, 9.81, 1000.0
     t_ref = math.sqrt(H / g)
     times = np.arange(0.01, 7.0 + 1e-9, 0.01)
@@ -116,7 +117,7 @@ def p1_signal(sim, height):
     for t_star in times:
         sim.run(until=t_star * t_ref)
         signal.append(sim.probe_pressure([3.2196, height])[0] / (rho0 * g * H))
-    return times, np.array(signal)
+    return times, np.nan_to_num(np.array(signal))
 
 
 def dam_break(sim):

@@ -12,8 +12,8 @@ with δ = 0.1, `δ+-SPH` the same with particle shifting) and the integrator (`R
 second-order symplectic scheme at CFL 0.15, its largest stable value in the dam break:
 it blows up in the run-up jet with 0.4, 0.25 and 0.2). Cases with artificial viscosity keep α of
 their TOML file in every variant; viscous cases keep their physical viscosity.
-The fast subset of these cases runs in CI as `tests/validation.rs`, `tests/hydrostatic.rs`,
-`tests/taylor_green.rs` and `tests/dam_break.rs`.
+The fast subset of these cases runs in CI as `tests/physics/validation.rs`, `tests/physics/hydrostatic.rs`,
+`tests/physics/taylor_green.rs` and `tests/physics/dam_break.rs`.
 """
 
 READING = {

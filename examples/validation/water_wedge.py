@@ -54,7 +54,8 @@ def config(n, diffusion, c0=20.0):
 
 
 def run(n, diffusion, c0=20.0):
-    """The probe signals [Pa] at every step, and the wall time."""
+    """The probe signals [Pa] at every step (zero gauge pressure while a probe is dry),
+    and the wall time."""
     sim = ds.Simulation(config(n, diffusion, c0))
     t, p = [0.0], [sim.probe_pressure(PROBES)]
     start = time.perf_counter()
@@ -63,7 +64,7 @@ def run(n, diffusion, c0=20.0):
         t.append(sim.time)
         p.append(sim.probe_pressure(PROBES))
     wall = time.perf_counter() - start
-    return np.array(t), np.array(p), wall, sim
+    return np.array(t), np.nan_to_num(np.array(p)), wall, sim
 
 
 def running_mean(t, p, width):

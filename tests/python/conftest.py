@@ -2,7 +2,10 @@
 
 import copy
 import pathlib
-import tomllib
+try:  # Python 3.11+
+    import tomllib
+except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+    import tomli as tomllib
 
 import pytest
 

@@ -105,10 +105,30 @@ def test_set_velocities_checks(sim):
     wall = int(np.flatnonzero(sim.kind == 1)[0])
     u = np.zeros((n, 2))
     u[wall] = 1.0
-    with pytest.raises(ValueError, match=f"row {wall} is a wall particle"):
+    with pytest.raises(ValueError, match=f"row {wall} = \\[1.0, 1.0\\] is a wall particle"):
         sim.set_velocities(u)
     # Nothing was changed by the refused calls.
     assert np.all(sim.velocities == 0.0)
+
+
+def test_a_sliding_lid_keeps_its_velocity_through_a_round_trip():
+    """The cavity's lid rows come back at the lid speed, are accepted back unchanged,
+    and cannot be stopped (or sped up) from Python."""
+    sim = ds.Simulation(example("validation/cavity", particles__spacing=0.05))
+    u = sim.velocities
+    lid = (sim.kind == ds.WALL) & (u[:, 0] != 0.0)
+    assert lid.sum() > 0 and np.allclose(u[lid], [1.0, 0.0])
+    fluid = sim.kind == ds.FLUID
+    u[fluid, 0] = 0.25
+    sim.set_velocities(u)
+    assert np.array_equal(sim.velocities, u)
+    row = int(np.flatnonzero(lid)[0])
+    u[row] = 0.0
+    with pytest.raises(ValueError, match=rf"row {row} = \[0.0, 0.0\] is a wall particle, "
+                                         r"expected its velocity \[1.0, 0.0\]"):
+        sim.set_velocities(u)
+    sim.step()
+    assert np.allclose(sim.velocities[lid], [1.0, 0.0])
 
 
 def test_set_density_checks(sim):
@@ -131,6 +151,15 @@ def test_probe_and_run_checks(sim):
         sim.run(until=0.0, progress=3)
     with pytest.raises(OverflowError):
         sim.step(-1)
+
+
+def test_run_cannot_go_back_in_time():
+    sim = ds.Simulation(example("hydrostatic_2d", particles__spacing=0.05))
+    sim.step(3)
+    with pytest.raises(ValueError, match=r"until = 0 s: expected a time no earlier than "
+                                         r"the simulation's, t = 0\.0\d+ s"):
+        sim.run(until=0.0)
+    assert sim.n_steps == 3
 
 
 def test_step_count_that_would_overflow_is_refused(sim):

@@ -29,6 +29,9 @@ pub struct Control<'a, const D: usize> {
     pub stop: &'a AtomicUsize,
     /// Called after every step (progress display).
     pub on_step: &'a mut dyn FnMut(&Simulation<D>),
+    /// Return [`Ending::Paused`] after this much wall time, for a front end that must
+    /// look at its own events between slices (none: run to the end).
+    pub slice: Option<Duration>,
 }
 
 /// How a run ended.
@@ -38,6 +41,8 @@ pub enum Ending {
     Finished { restart: PathBuf },
     /// A stop was requested (`signal`); it wrote a last snapshot and a restart file.
     Stopped { signal: usize, restart: PathBuf },
+    /// The slice of wall time ran out ([`Control::slice`]); `drive` again goes on.
+    Paused,
     /// It went unstable; `snapshot` holds the state at which it stopped.
     Unstable {
         error: SphError,
@@ -50,49 +55,55 @@ pub enum Ending {
     },
 }
 
-/// A simulation with its run folder and output schedule.
-pub struct Run<const D: usize> {
-    pub sim: Simulation<D>,
+/// The run folder of a simulation and its output schedule. The simulation is passed
+/// to each call, so that the front end keeps it (and can read it between calls).
+pub struct Run {
     pub output: Output,
     pub schedule: Schedule,
     /// Counters when this leg of the run started (a continued run counts from there).
     pub since: Counters,
     /// Wall time of the stepping loop so far.
     pub wall: Duration,
+    /// Simulated time of the last time-series row.
+    last_row: f64,
+    /// When the last restart file was written (or the run started).
+    last_restart: Instant,
 }
 
-impl<const D: usize> Run<D> {
+impl Run {
     /// A fresh run: the series header, the first row and the first snapshot.
-    pub fn start(sim: Simulation<D>, mut output: Output) -> Result<Self> {
+    pub fn start<const D: usize>(sim: &mut Simulation<D>, mut output: Output) -> Result<Self> {
         output.start_series(&sim.series_header())?;
-        let (snap_every, series_every) = intervals(&sim);
+        let (snap_every, series_every) = intervals(sim);
+        let t = sim.time();
         let schedule = Schedule {
-            next_snapshot: snap_every,
-            next_series: series_every,
-            next_restart: sim.case().output.restart_interval.unwrap_or(f64::INFINITY),
+            next_snapshot: t + snap_every,
+            next_series: t + series_every,
+            next_restart: t + sim.case().output.restart_interval.unwrap_or(f64::INFINITY),
             snapshots: 0,
             initial_energy: sim.energies().total(),
         };
         let mut run = Self::resume(sim, output, schedule);
-        let row = run.sim.series_values();
+        let row = sim.series_values();
         run.output.series_row(&row)?;
-        run.snapshot()?;
+        run.snapshot(sim)?;
         Ok(run)
     }
 
     /// A run continued from a restart file's simulation and schedule, in its folder.
-    pub fn resume(sim: Simulation<D>, output: Output, schedule: Schedule) -> Self {
+    pub fn resume<const D: usize>(sim: &Simulation<D>, output: Output, schedule: Schedule) -> Self {
         Self {
             since: sim.counters(),
-            sim,
+            last_row: sim.time(),
+            last_restart: Instant::now(),
             output,
             schedule,
             wall: Duration::ZERO,
         }
     }
 
-    fn snapshot(&mut self) -> Result<PathBuf> {
-        let (sim, output) = (&self.sim, &mut self.output);
+    fn snapshot<const D: usize>(&mut self, sim: &Simulation<D>) -> Result<PathBuf> {
+        let output = &mut self.output;
         let steps = sim.counters().steps;
         let path = crate::io::output::with_extras(sim, |extras| {
             output.snapshot(sim.particles(), extras, sim.time(), steps)
@@ -101,102 +112,102 @@ impl<const D: usize> Run<D> {
         Ok(path)
     }
 
-    fn write_restart(&mut self) -> Result<PathBuf> {
-        let checkpoint = self.sim.checkpoint()?;
+    fn write_restart<const D: usize>(&mut self, sim: &Simulation<D>) -> Result<PathBuf> {
+        let checkpoint = sim.checkpoint()?;
         self.output.write_restart(&checkpoint, &self.schedule)
     }
 
     /// The series row and snapshot due after the step just taken.
-    fn record(&mut self, series_every: f64, snap_every: f64) -> Result<bool> {
+    fn record<const D: usize>(
+        &mut self,
+        sim: &mut Simulation<D>,
+        series_every: f64,
+        snap_every: f64,
+    ) -> Result<bool> {
         let mut wrote_row = false;
-        if self.sim.time() >= self.schedule.next_series {
-            let row = self.sim.series_values();
+        if sim.time() >= self.schedule.next_series {
+            let row = sim.series_values();
             self.output.series_row(&row)?;
             self.schedule.next_series += series_every;
             wrote_row = true;
         }
-        let end = self.sim.case().time.end;
-        if snap_every > 0.0
-            && self.sim.time() >= self.schedule.next_snapshot
-            && self.sim.time() < end
-        {
-            self.sim.sync_pressure();
-            self.snapshot()?;
+        let end = sim.case().time.end;
+        if snap_every > 0.0 && sim.time() >= self.schedule.next_snapshot && sim.time() < end {
+            sim.sync_pressure();
+            self.snapshot(sim)?;
             self.schedule.next_snapshot += snap_every;
         }
         Ok(wrote_row)
     }
 
     /// Whether a restart file is due, on simulated time or on wall time.
-    fn restart_due(&mut self, control: &Control<D>, last: Instant) -> bool {
-        let on_time = self.sim.time() >= self.schedule.next_restart;
+    fn restart_due<const D: usize>(&mut self, sim: &Simulation<D>, control: &Control<D>) -> bool {
+        let on_time = sim.time() >= self.schedule.next_restart;
         if on_time {
-            let every = self
-                .sim
-                .case()
-                .output
-                .restart_interval
-                .unwrap_or(f64::INFINITY);
-            while self.schedule.next_restart <= self.sim.time() {
+            let every = sim.case().output.restart_interval.unwrap_or(f64::INFINITY);
+            while self.schedule.next_restart <= sim.time() {
                 self.schedule.next_restart += every;
             }
         }
         on_time
             || control
                 .checkpoint_every
-                .is_some_and(|every| last.elapsed() >= every)
+                .is_some_and(|every| self.last_restart.elapsed() >= every)
     }
 
     /// Steps to the end time (or step cap, or a stop request), writing output on its
     /// intervals, and ends as [`Ending`] says.
-    pub fn drive(&mut self, control: &mut Control<D>) -> Ending {
-        let end = self.sim.case().time.end;
-        let (snap_every, series_every) = intervals(&self.sim);
-        let max_steps = self.sim.case().time.max_steps.unwrap_or(u64::MAX);
+    pub fn drive<const D: usize>(
+        &mut self,
+        sim: &mut Simulation<D>,
+        control: &mut Control<D>,
+    ) -> Ending {
+        let end = sim.case().time.end;
+        let (snap_every, series_every) = intervals(sim);
+        let max_steps = sim.case().time.max_steps.unwrap_or(u64::MAX);
         let start = Instant::now();
-        let mut last_restart = Instant::now();
-        let mut last_row = self.sim.time();
         let flag = control.stop;
         let stop = || flag.load(Ordering::Relaxed);
-        while self.sim.time() < end * (1.0 - 1e-12)
-            && self.sim.counters().steps < max_steps
-            && stop() == 0
-        {
-            if let Err(error) = self.sim.step() {
+        while sim.time() < end * (1.0 - 1e-12) && sim.counters().steps < max_steps && stop() == 0 {
+            if control.slice.is_some_and(|slice| start.elapsed() >= slice) {
+                self.wall += start.elapsed();
+                return Ending::Paused;
+            }
+            if let Err(error) = sim.step() {
                 self.wall += start.elapsed();
                 return Ending::Unstable {
                     error,
-                    snapshot: self.snapshot(),
+                    snapshot: self.snapshot(sim),
                 };
             }
-            match self.record(series_every, snap_every) {
-                Ok(true) => last_row = self.sim.time(),
+            match self.record(sim, series_every, snap_every) {
+                Ok(true) => self.last_row = sim.time(),
                 Ok(false) => {}
-                Err(error) => return self.output_failed(error, start),
+                Err(error) => return self.output_failed(sim, error, start),
             }
-            if self.restart_due(control, last_restart) {
-                if let Err(error) = self.write_restart() {
+            if self.restart_due(sim, control) {
+                if let Err(error) = self.write_restart(sim) {
                     self.wall += start.elapsed();
                     return Ending::OutputFailed {
                         restart: Err(error.clone()),
                         error,
                     };
                 }
-                last_restart = Instant::now();
+                self.last_restart = Instant::now();
             }
-            (control.on_step)(&self.sim);
+            (control.on_step)(sim);
         }
         self.wall += start.elapsed();
-        self.sim.sync_pressure();
+        sim.sync_pressure();
         let signal = stop();
         let closing = (|| -> Result<PathBuf> {
-            if signal == 0 && self.sim.time() > last_row {
+            if signal == 0 && sim.time() > self.last_row {
                 // the closing row (a stopped run gets it when it reaches its end)
-                let row = self.sim.series_values();
+                let row = sim.series_values();
                 self.output.series_row(&row)?;
             }
-            self.snapshot()?;
-            self.write_restart()
+            self.snapshot(sim)?;
+            self.write_restart(sim)
         })();
         match (closing, signal) {
             (Ok(restart), 0) => Ending::Finished { restart },
@@ -210,12 +221,17 @@ impl<const D: usize> Run<D> {
 
     /// A write failed (its partial file is gone): the older of the two restart files
     /// makes room for a new one, which is written before the run stops.
-    fn output_failed(&mut self, error: SphError, start: Instant) -> Ending {
+    fn output_failed<const D: usize>(
+        &mut self,
+        sim: &Simulation<D>,
+        error: SphError,
+        start: Instant,
+    ) -> Ending {
         self.wall += start.elapsed();
         self.output.drop_previous_restart();
         Ending::OutputFailed {
             error,
-            restart: self.write_restart(),
+            restart: self.write_restart(sim),
         }
     }
 }

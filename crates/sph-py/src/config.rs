@@ -20,7 +20,7 @@ pub fn table(dict: &Bound<'_, PyDict>, path: &str) -> PyResult<toml::Table> {
                 ),
             ));
         };
-        let key = key.to_str()?.to_string();
+        let key = key.to_cow()?.into_owned();
         let inner = join(path, &key);
         table.insert(key, to_toml(&value, &inner)?);
     }
@@ -39,7 +39,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
         return Ok(Value::Float(obj.extract()?));
     }
     if let Ok(s) = obj.cast::<PyString>() {
-        return Ok(Value::String(s.to_str()?.to_string()));
+        return Ok(Value::String(s.to_cow()?.into_owned()));
     }
     if let Ok(d) = obj.cast::<PyDict>() {
         return Ok(Value::Table(table(d, path)?));

@@ -5,6 +5,7 @@
 mod arrays;
 mod config;
 mod errors;
+mod folder;
 mod simulation;
 
 use pyo3::prelude::*;
@@ -12,6 +13,20 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::PySimulation>()?;
+    m.add_function(wrap_pyfunction!(folder::read_snapshot, m)?)?;
+    m.add_function(wrap_pyfunction!(cli, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
+}
+
+/// What the Python command adds to the command line's help.
+const PLOT_HELP: &str = "Also: deltasph plot <run folder> writes PNGs of its snapshots and \
+                         time series (needs matplotlib).";
+
+/// Runs the command line (``deltasph run|check|preview|schema ...``): ``args`` are the
+/// words after the program name. Returns the exit code, as ``sph-cli`` does.
+#[pyfunction]
+fn cli(py: Python<'_>, args: Vec<std::ffi::OsString>) -> u8 {
+    let argv = std::iter::once("deltasph".into()).chain(args).collect();
+    py.detach(|| sph_cli::main_with("deltasph", argv, Some(PLOT_HELP)))
 }

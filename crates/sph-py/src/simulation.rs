@@ -4,10 +4,12 @@
 use crate::arrays;
 use crate::config;
 use crate::errors::to_py;
+use crate::folder::{Folder, FolderOptions};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use sph_core::io::restart;
 use sph_core::{Case, Kind, Simulation, SphError};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -83,12 +85,15 @@ fn set_velocities<const D: usize>(
     velocities: &Bound<'_, PyAny>,
 ) -> PyResult<()> {
     let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles().id, rows(s))?;
-    let moving_wall =
-        (0..u.len()).find(|&k| s.particles().kind[k] == Kind::Wall && u[k].norm_squared() > 0.0);
-    if let Some(k) = moving_wall {
+    let p = s.particles();
+    let changed_wall = (0..u.len()).find(|&k| p.kind[k] == Kind::Wall && u[k] != p.u[k]);
+    if let Some(k) = changed_wall {
         return Err(PyValueError::new_err(format!(
-            "velocities: row {} is a wall particle, expected zero (walls are fixed)",
-            s.particles().id[k]
+            "velocities: row {} = {:?} is a wall particle, expected its velocity {:?} \
+             (walls move as the case prescribes: a lid at tank.lid_velocity, else at rest)",
+            p.id[k],
+            u[k].as_slice(),
+            p.u[k].as_slice()
         )));
     }
     s.edit(|p| p.u = u);
@@ -108,6 +113,27 @@ fn set_density<const D: usize>(s: &mut Simulation<D>, density: &Bound<'_, PyAny>
     Ok(())
 }
 
+fn folder_options(
+    out: PathBuf,
+    force: bool,
+    checkpoint_every: Option<f64>,
+) -> PyResult<FolderOptions> {
+    let checkpoint_every = match checkpoint_every {
+        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
+        Some(s) => {
+            return Err(PyValueError::new_err(format!(
+                "checkpoint_every = {s}: expected a wall-clock interval above 0 s"
+            )))
+        }
+        None => None,
+    };
+    Ok(FolderOptions {
+        out,
+        force,
+        checkpoint_every,
+    })
+}
+
 /// A weakly-compressible δ-SPH simulation.
 ///
 /// Build it from a dict with the keys of the TOML case file (see the README's case
@@ -118,6 +144,8 @@ pub struct PySimulation {
     solver: Solver,
     /// Whether stored pressures (and wall densities) match the current positions.
     pressure_fresh: bool,
+    /// The run folder of `run(out=...)`.
+    folder: Folder,
 }
 
 impl PySimulation {
@@ -131,7 +159,31 @@ impl PySimulation {
         Ok(Self {
             solver,
             pressure_fresh: true,
+            folder: Folder::default(),
         })
+    }
+
+    /// Steps to `until` writing the run folder `options.out`.
+    fn drive_folder(
+        &mut self,
+        py: Python<'_>,
+        until: f64,
+        output_interval: Option<f64>,
+        options: &FolderOptions,
+        report: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let folder = &mut self.folder;
+        let outcome = each!(&mut self.solver, s => {
+            if until > s.time() {
+                s.set_end(until).map_err(|e| to_py(py, e))?;
+            }
+            if let Some(every) = output_interval {
+                s.set_output_interval(every).map_err(|e| to_py(py, e))?;
+            }
+            folder.drive(py, s, options, report)
+        });
+        self.pressure_fresh = true;
+        outcome
     }
 
     fn case(&self) -> &Case {
@@ -215,12 +267,28 @@ impl PySimulation {
     /// True for a progress bar (tqdm when installed), or a callable
     /// ``progress(time, n_steps)`` called about ten times a second. Raises
     /// InstabilityError if the run blows up; the state at that moment is kept.
-    #[pyo3(signature = (until=None, progress=None))]
+    ///
+    /// With ``out``, writes the command line's run folder there, by the same rules:
+    /// snapshots every ``output_interval`` [s] (default: the case's
+    /// ``time.output_interval``) indexed by ``particles.xmf``, ``timeseries.csv``,
+    /// ``case.toml`` and restart files (on ``output.restart_interval``, every
+    /// ``checkpoint_every`` seconds of wall time, and at the end). A folder that holds
+    /// an earlier run is refused unless ``force`` (even then only deltasph's files are
+    /// replaced); later calls with the same ``out`` continue it, and so does the
+    /// folder of the restart file a simulation was built from. Ctrl-C writes a last
+    /// snapshot and a restart file before KeyboardInterrupt; a blow-up writes a last
+    /// snapshot.
+    #[pyo3(signature = (until=None, progress=None, *, out=None, output_interval=None, force=false, checkpoint_every=None))]
+    #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
         py: Python<'_>,
         until: Option<f64>,
         progress: Option<Bound<'_, PyAny>>,
+        out: Option<PathBuf>,
+        output_interval: Option<f64>,
+        force: bool,
+        checkpoint_every: Option<f64>,
     ) -> PyResult<()> {
         let until = until.unwrap_or(self.case().time.end);
         if !until.is_finite() {
@@ -228,6 +296,23 @@ impl PySimulation {
                 "until = {until}: expected a finite time in seconds"
             )));
         }
+        if until < self.time() {
+            return Err(PyValueError::new_err(format!(
+                "until = {until} s: expected a time no earlier than the simulation's, \
+                 t = {} s (a run cannot go back in time)",
+                self.time()
+            )));
+        }
+        let folder = match out {
+            Some(out) => Some(folder_options(out, force, checkpoint_every)?),
+            None if output_interval.is_some() || force || checkpoint_every.is_some() => {
+                return Err(PyValueError::new_err(
+                    "output_interval, force and checkpoint_every: expected them only with \
+                     out=<run folder>",
+                ))
+            }
+            None => None,
+        };
         let target = Target::Time {
             until,
             max_steps: self.case().time.max_steps.unwrap_or(u64::MAX),
@@ -235,9 +320,51 @@ impl PySimulation {
         let helpers = py.import("deltasph._progress")?;
         let report = helpers.call_method1("reporter", (progress, self.time(), until))?;
         let report_ref = (!report.is_none()).then_some(&report);
-        let outcome = self.drive(py, target, report_ref);
+        let outcome = match folder {
+            Some(options) => self.drive_folder(py, until, output_interval, &options, report_ref),
+            None => self.drive(py, target, report_ref),
+        };
         helpers.call_method1("close", (report,))?;
         outcome
+    }
+
+    /// Continues the run saved in a restart file (``restart.h5`` of a run folder), bit
+    /// for bit, to ``until`` [s] when given (else the case's end time). ``run`` with
+    /// ``out`` set to the restart file's folder goes on writing that folder, as
+    /// ``sph-cli run --restart`` does.
+    #[staticmethod]
+    #[pyo3(signature = (path, until=None))]
+    fn from_restart(py: Python<'_>, path: PathBuf, until: Option<f64>) -> PyResult<Self> {
+        if !path.is_file() {
+            return Err(PyFileNotFoundError::new_err(format!(
+                "{}: no such restart file",
+                path.display()
+            )));
+        }
+        let built = py.detach(|| -> sph_core::Result<_> {
+            Ok(match restart::dimension(&path)? {
+                2 => {
+                    let (checkpoint, schedule) = restart::read::<2>(&path)?;
+                    (
+                        Solver::Two(Simulation::from_checkpoint(checkpoint, until)?),
+                        schedule,
+                    )
+                }
+                _ => {
+                    let (checkpoint, schedule) = restart::read::<3>(&path)?;
+                    (
+                        Solver::Three(Simulation::from_checkpoint(checkpoint, until)?),
+                        schedule,
+                    )
+                }
+            })
+        });
+        let (solver, schedule) = built.map_err(|e| to_py(py, e))?;
+        Ok(Self {
+            solver,
+            pressure_fresh: false,
+            folder: Folder::continuing(&path, schedule),
+        })
     }
 
     /// Advances exactly ``n`` steps (default 1), with the interpreter released.
@@ -333,7 +460,8 @@ impl PySimulation {
         each!(&self.solver, s => arrays::vectors(py, &s.particles().id, rows(s), &s.particles().x))
     }
 
-    /// Velocities [m/s], float64 array (N, D), a copy. Walls are fixed (zero).
+    /// Velocities [m/s], float64 array (N, D), a copy. Wall rows hold the walls'
+    /// prescribed velocities: zero, or ``tank.lid_velocity`` for a sliding lid.
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         each!(&self.solver, s => arrays::vectors(py, &s.particles().id, rows(s), &s.particles().u))
@@ -410,7 +538,8 @@ impl PySimulation {
 
     /// Pressure [Pa] interpolated (Shepard) from the fluid at ``points``: array-like
     /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
-    /// fluid within the kernel support reads 0.
+    /// fluid within the kernel support reads NaN (no fluid there, which is not zero
+    /// pressure; ``numpy.nan_to_num`` turns it into zero gauge pressure).
     fn probe_pressure<'py>(
         &mut self,
         py: Python<'py>,
@@ -419,7 +548,10 @@ impl PySimulation {
         self.fresh_pressure();
         each!(&self.solver, s => {
             let points = arrays::points(points)?;
-            let values: Vec<f64> = points.iter().map(|x| s.probe_pressure(x)).collect();
+            let values: Vec<f64> = points
+                .iter()
+                .map(|x| s.probe_pressure(x).unwrap_or(f64::NAN))
+                .collect();
             Ok(PyArray1::from_vec(py, values))
         })
     }
@@ -440,8 +572,10 @@ impl PySimulation {
         Ok(dict)
     }
 
-    /// Sets all velocities [m/s] from a float64 array (N, D) in id order (as
-    /// ``velocities`` returns it). Wall rows must be zero: walls are fixed.
+    /// Sets the fluid velocities [m/s] from a float64 array (N, D) in id order (as
+    /// ``velocities`` returns it). Wall rows must hold the walls' own velocities, as
+    /// ``velocities`` returns them (zero, or a lid's sliding velocity): wall motion
+    /// comes from the case, not from this call.
     fn set_velocities(&mut self, velocities: &Bound<'_, PyAny>) -> PyResult<()> {
         each!(&mut self.solver, s => set_velocities(s, velocities))?;
         self.pressure_fresh = true;

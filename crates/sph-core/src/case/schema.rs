@@ -4,10 +4,11 @@
 
 use super::shapes::{Role, ShapeConfig};
 use crate::physics::kernel::KernelChoice;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// A whole case, as written in the TOML file.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
     /// Run name, a plain file name: the default output folder is `<name>_out`.
@@ -45,7 +46,7 @@ fn default_name() -> String {
     "case".into()
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ParticlesConfig {
     /// Initial particle spacing Δx [m].
@@ -67,7 +68,7 @@ fn default_kernel() -> KernelChoice {
     KernelChoice::WendlandC2
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FluidConfig {
     /// Reference density ρ0 [kg/m³].
@@ -93,7 +94,7 @@ fn default_sound_speed_factor() -> f64 {
 }
 
 /// An axis-aligned box `[lo, hi]`, filled with particles on the lattice `lo + (k + ½)Δx`.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BoxConfig {
     pub lo: Vec<f64>,
@@ -119,7 +120,7 @@ pub struct BoxConfig {
     pub name: Option<String>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Shape {
     Box,
@@ -128,7 +129,7 @@ pub enum Shape {
 }
 
 /// A tank: wall layers around the inner box `[lo, hi]`, except on the open faces.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TankConfig {
     pub lo: Vec<f64>,
@@ -165,7 +166,7 @@ impl TankConfig {
 /// a fluid particle that leaves the box is removed from the run. Without a `[domain]`
 /// the box is the particles' initial bounding box widened by its own size on every
 /// side (see [`crate::geometry`]).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DomainConfig {
     pub lo: Vec<f64>,
@@ -185,7 +186,7 @@ impl DomainConfig {
 }
 
 /// An analytic initial field laid over the fluid blocks.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum InitialField {
     /// 2D Taylor-Green vortex on a periodic square of side `wavelength`:
@@ -223,7 +224,7 @@ pub enum InitialField {
     },
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum DiffusionChoice {
     None,
@@ -232,7 +233,7 @@ pub enum DiffusionChoice {
     DeltaSph,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ViscosityChoice {
     None,
@@ -240,7 +241,7 @@ pub enum ViscosityChoice {
     Physical,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum IntegratorChoice {
     /// Runge-Kutta 4 with the diffusive term frozen over the step.
@@ -249,14 +250,14 @@ pub enum IntegratorChoice {
     Symplectic,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum WallCondition {
     FreeSlip,
     NoSlip,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SchemeConfig {
     #[serde(default = "default_diffusion")]
@@ -294,7 +295,7 @@ pub struct SchemeConfig {
     pub tensile_control: bool,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ShiftingChoice {
     None,
@@ -372,7 +373,7 @@ impl SchemeConfig {
     }
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TimeConfig {
     /// End time [s].
@@ -385,7 +386,7 @@ pub struct TimeConfig {
     pub max_steps: Option<u64>,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StabilityConfig {
     /// Largest admissible |ρ/ρ0 - 1| before the run is stopped.
@@ -415,7 +416,7 @@ fn default_max_density_variation() -> f64 {
     0.2
 }
 
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DiagnosticsConfig {
     /// Interval of the time series (energies, probes, front) [s]; default output_interval/10.
@@ -456,7 +457,7 @@ pub struct DiagnosticsConfig {
 }
 
 /// The scales of the force coefficients.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ReferenceConfig {
     /// U [m/s].
@@ -470,7 +471,7 @@ pub struct ReferenceConfig {
 
 /// A face sensor: columns `<name>_pressure` (the face average), `<name>_point` (the
 /// point value at its centre) and, with a cut-off, `<name>_filtered`.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SensorConfig {
     pub name: String,
@@ -488,7 +489,7 @@ pub struct SensorConfig {
 }
 
 /// What a run writes besides snapshots and the time series.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputConfig {
     /// Simulated-time interval between restart files [s]; none by default (a restart

@@ -6,10 +6,11 @@
 use super::schema::Case;
 use super::validate::{check_box, components, finite, positive};
 use crate::error::{Result, SphError};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// What a shape is in the case.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Role {
     /// Fluid on the lattice points inside the solid, hydrostatic by default.
@@ -23,7 +24,7 @@ pub enum Role {
 }
 
 /// A disc (2D) or ball (3D).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BallConfig {
     pub centre: Vec<f64>,
@@ -31,7 +32,7 @@ pub struct BallConfig {
 }
 
 /// A circular cylinder (3D) between the centres of its two end faces.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CylinderConfig {
     pub base: Vec<f64>,
@@ -40,7 +41,7 @@ pub struct CylinderConfig {
 }
 
 /// An axis-aligned box.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CuboidConfig {
     pub lo: Vec<f64>,
@@ -49,7 +50,7 @@ pub struct CuboidConfig {
 
 /// One `[[shape]]`: exactly one of the geometry keys (`polygon`, `file`, `circle`,
 /// `sphere`, `cylinder`, `box`) and the keys of its role.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShapeConfig {
     pub role: Role,

@@ -118,6 +118,7 @@ impl Case {
                     format!("{d} booleans (dimension = {d})"),
                 ));
             }
+            self.check_tanks_open_along_periodic(dom, d)?;
         }
         match &self.initial {
             Some(InitialField::TaylorGreen {
@@ -291,6 +292,48 @@ impl Case {
                         "a frequency in (0, {nyquist}) Hz: below the Nyquist frequency of the \
                          series it filters (diagnostics.interval = {} s)",
                         self.series_interval()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Along a periodic axis the fluid wraps around, so a tank may have no wall there:
+    /// both its faces on that axis must be open.
+    fn check_tanks_open_along_periodic(&self, dom: &DomainConfig, d: usize) -> Result<()> {
+        const FACES: [[&str; 2]; 3] = [["-x", "+x"], ["-y", "+y"], ["-z", "+z"]];
+        for (k, t) in self.tank.iter().enumerate() {
+            let open = t.open_faces(d);
+            for axis in (0..d).filter(|&a| dom.is_periodic(a)) {
+                let missing: Vec<&str> = [-1i8, 1]
+                    .iter()
+                    .zip(FACES[axis])
+                    .filter(|(side, _)| !open.contains(&(axis, **side)))
+                    .map(|(_, name)| name)
+                    .collect();
+                if missing.is_empty() {
+                    continue;
+                }
+                let current = (t.open.clone()).unwrap_or_else(|| vec![FACES[d - 1][1].into()]);
+                let value = match t.open {
+                    Some(_) => format!("{current:?}"),
+                    None => format!("{current:?} (the default)"),
+                };
+                let mut faces = current;
+                faces.extend(missing.iter().map(|f| f.to_string()));
+                return Err(SphError::invalid(
+                    format!("tank[{k}].open"),
+                    value,
+                    format!(
+                        "the faces along periodic axis {} open (domain.periodic): add {}, \
+                         e.g. open = {faces:?}",
+                        ["x", "y", "z"][axis],
+                        missing
+                            .iter()
+                            .map(|f| format!("\"{f}\""))
+                            .collect::<Vec<_>>()
+                            .join(" and ")
                     ),
                 ));
             }
@@ -521,6 +564,29 @@ mod tests {
             e.starts_with("particles.spacing = 0.000000001: expected a spacing giving at most"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_periodic_axis_names_the_tank_faces_to_open() {
+        let periodic = MINIMAL.to_string()
+            + "[domain]\nlo = [-0.1, -0.1]\nhi = [0.6, 0.5]\nperiodic = [true, false]\n";
+        let e = error_of(&periodic);
+        assert_eq!(
+            e,
+            "tank[0].open = [\"+y\"] (the default): expected the faces along periodic axis x open \
+             (domain.periodic): add \"-x\" and \"+x\", e.g. open = [\"+y\", \"-x\", \"+x\"]"
+        );
+        let half = periodic.replace(
+            "hi = [0.5, 0.3]",
+            "hi = [0.5, 0.3]\nopen = [\"+y\", \"-x\"]",
+        );
+        let e = error_of(&half);
+        assert!(
+            e.contains("add \"+x\", e.g. open = [\"+y\", \"-x\", \"+x\"]"),
+            "{e}"
+        );
+        let open = half.replace("\"-x\"]", "\"-x\", \"+x\"]");
+        assert!(Case::from_toml_str(&open).is_ok());
     }
 
     #[test]

@@ -76,14 +76,16 @@ pub fn max_density_variation<const D: usize>(p: &Particles<D>, rho0: f64) -> f64
         .reduce(|| 0.0, f64::max)
 }
 
-/// Shepard-interpolated fluid pressure at `point`.
+/// Shepard-interpolated fluid pressure at `point`, `Σ_j p_j W_ij V_j / Σ_j W_ij V_j`
+/// over the fluid within the kernel support; `None` where no fluid is in reach (a dry
+/// point has no SPH pressure, which is not the same as zero pressure).
 pub fn probe_pressure<const D: usize>(
     model: &dyn Model<D>,
     p: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
     point: &Vector<D>,
-) -> f64 {
+) -> Option<f64> {
     let r_max = model.support_radius();
     let (mut num, mut den) = (0.0, 0.0);
     list.for_candidates(point, |j| {
@@ -97,11 +99,7 @@ pub fn probe_pressure<const D: usize>(
             den += wv;
         }
     });
-    if den > 0.0 {
-        num / den
-    } else {
-        0.0
-    }
+    (den > 0.0).then(|| num / den)
 }
 
 /// Largest fluid coordinate along `axis` (the leading edge of a surge).

@@ -37,7 +37,7 @@ pub trait Kernel: Copy + Send + Sync + 'static {
 }
 
 /// The kernel a case asks for; resolved once into a [`Kernel`] type.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum KernelChoice {
     WendlandC2,

@@ -162,6 +162,34 @@ impl<const D: usize> Simulation<D> {
         &self.case
     }
 
+    /// Moves the end time (`time.end`) to `end`, as the command line's `--until` does.
+    /// Only the length of the last step depends on it.
+    pub fn set_end(&mut self, end: f64) -> Result<()> {
+        if !(end.is_finite() && end > self.time) {
+            return Err(SphError::invalid(
+                "until",
+                end,
+                format!("a time after the simulation's, t = {} s", self.time),
+            ));
+        }
+        self.case.time.end = end;
+        Ok(())
+    }
+
+    /// Sets the snapshot interval (`time.output_interval`, s; 0: snapshots only at the
+    /// start and the end). The steps do not depend on it.
+    pub fn set_output_interval(&mut self, every: f64) -> Result<()> {
+        if !(every.is_finite() && every >= 0.0) {
+            return Err(SphError::invalid(
+                "output_interval",
+                every,
+                "a snapshot interval of 0 s or more",
+            ));
+        }
+        self.case.time.output_interval = every;
+        Ok(())
+    }
+
     /// The particles in their current storage order (`id` names each one).
     pub fn particles(&self) -> &Particles<D> {
         &self.particles
@@ -523,8 +551,9 @@ impl<const D: usize> Simulation<D> {
         diagnostics::max_density_variation(&self.particles, self.physics().eos.rho0)
     }
 
-    /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first).
-    pub fn probe_pressure(&self, point: &Vector<D>) -> f64 {
+    /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first);
+    /// `None` where no fluid is within the kernel support.
+    pub fn probe_pressure(&self, point: &Vector<D>) -> Option<f64> {
         diagnostics::probe_pressure(
             self.model.as_ref(),
             &self.particles,

@@ -68,13 +68,14 @@ impl<const D: usize> Simulation<D> {
             self.sync_pressure();
             for probe in &diag.probes {
                 let point = Vector::<D>::from_fn(|d, _| probe[d]);
-                v.push(self.probe_pressure(&point));
+                v.push(self.probe_pressure(&point).unwrap_or(f64::NAN));
             }
         }
         let mut sensors = std::mem::take(&mut self.sensors);
         for s in &mut sensors {
-            let face = s.average(|x| self.probe_pressure(x));
-            v.extend([face, self.probe_pressure(&s.centre)]);
+            // a sensor's face in air reads zero gauge pressure, as a transducer does
+            let face = s.average(|x| self.probe_pressure(x).unwrap_or(0.0));
+            v.extend([face, self.probe_pressure(&s.centre).unwrap_or(0.0)]);
             if let Some(filter) = &mut s.filter {
                 v.push(filter.push(face));
             }

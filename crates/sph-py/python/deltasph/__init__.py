@@ -14,6 +14,7 @@ particle created i-th), so they can be compared across steps and edited freely.
 
 from ._core import Simulation, __version__
 from .errors import ConfigError, ConfigKeyError, InstabilityError
+from .runs import RunFolder, Snapshot, load
 
 #: Values of ``Simulation.kind``.
 FLUID = 0
@@ -26,5 +27,8 @@ __all__ = [
     "ConfigError",
     "ConfigKeyError",
     "InstabilityError",
+    "RunFolder",
+    "Snapshot",
+    "load",
     "__version__",
 ]

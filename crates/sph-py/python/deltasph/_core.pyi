@@ -30,13 +30,34 @@ class Simulation:
         """Builds a simulation from a TOML case file (FileNotFoundError if absent)."""
     def to_toml(self) -> str:
         """The case as TOML text, every default filled in."""
-    def run(self, until: Optional[float] = None, progress: _Progress = None) -> None:
+    def run(
+        self,
+        until: Optional[float] = None,
+        progress: _Progress = None,
+        *,
+        out: Union[str, PathLike[str], None] = None,
+        output_interval: Optional[float] = None,
+        force: bool = False,
+        checkpoint_every: Optional[float] = None,
+    ) -> None:
         """Advances to time ``until`` [s] (default ``time.end``), landing on it exactly.
 
         The interpreter is released; Ctrl-C raises KeyboardInterrupt between steps.
         ``progress``: True for a bar, or ``callable(time, n_steps)``.
-        Raises InstabilityError on blow-up, keeping the state at that moment.
+        Raises InstabilityError on blow-up, keeping the state at that moment; a
+        ``until`` before the current time raises ValueError.
+
+        With ``out``: writes the command line's run folder there (snapshots every
+        ``output_interval`` s, XDMF index, time series, case copy, restart files every
+        ``checkpoint_every`` s of wall time and at the end); ``force`` replaces an
+        earlier run's files. Later calls with the same ``out`` continue the folder.
         """
+    @staticmethod
+    def from_restart(
+        path: Union[str, PathLike[str]], until: Optional[float] = None
+    ) -> Simulation:
+        """Continues a run from its restart file, bit for bit; ``run(out=<its folder>)``
+        goes on writing that folder."""
     def step(self, n: int = 1) -> None:
         """Advances exactly ``n`` steps."""
     @property
@@ -78,7 +99,7 @@ class Simulation:
         """Positions [m], shape (N, D)."""
     @property
     def velocities(self) -> npt.NDArray[np.float64]:
-        """Velocities [m/s], shape (N, D); walls are fixed (zero)."""
+        """Velocities [m/s], shape (N, D); wall rows: zero, or a sliding lid's velocity."""
     @property
     def density(self) -> npt.NDArray[np.float64]:
         """Density [kg/m³], shape (N,)."""
@@ -99,11 +120,13 @@ class Simulation:
         ``dissipated`` is None unless ``diagnostics.energy_budget = true``.
         """
     def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,)."""
+        """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,); NaN at
+        a point with no fluid within the kernel support."""
     def free_surface(self) -> dict[str, npt.NDArray[Any]]:
         """Free-surface detection: ``on_surface`` (N,), ``normal`` (N, D), ``lambda`` (N,)."""
     def set_velocities(self, velocities: npt.NDArray[np.float64]) -> None:
-        """Sets velocities from a float64 array (N, D) in id order; wall rows zero."""
+        """Sets the fluid velocities from a float64 array (N, D) in id order; wall rows
+        must hold the walls' own velocities, as ``velocities`` returns them."""
     def set_density(self, density: npt.NDArray[np.float64]) -> None:
         """Sets densities from a positive float64 array (N,) in id order."""
     def write_snapshot(
@@ -113,3 +136,9 @@ class Simulation:
 
         Existing files are refused unless ``overwrite``; even then only files written
         by deltasph are replaced."""
+
+def read_snapshot(path: Union[str, PathLike[str]]) -> tuple[float, int, dict[str, npt.NDArray[Any]]]:
+    """``(time, step, fields)`` of a snapshot file, rows in the file's order."""
+
+def cli(args: list[str]) -> int:
+    """Runs the ``deltasph`` command line with ``args``; returns its exit code."""

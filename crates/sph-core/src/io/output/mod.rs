@@ -9,6 +9,7 @@
 
 pub mod atomic;
 pub mod manifest;
+pub mod reading;
 pub mod snapshot;
 
 pub use snapshot::{with_extras, write_indexed_snapshot, write_snapshot, Extras};

@@ -2,9 +2,7 @@
 //! restart file, `--restart` continues bit for bit, and a killed run leaves only
 //! complete snapshots.
 
-mod common;
-
-use common::{cli, cli_within, scratch, small_case};
+use crate::common::{cli, cli_within, scratch, small_case};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};

@@ -32,7 +32,8 @@ fn apex_signal(n: usize, diffusion: &str, c0: f64) -> Vec<(f64, f64)> {
     while sim.time() < 0.2 * (1.0 - 1e-12) {
         sim.step().unwrap();
         sim.sync_pressure();
-        signal.push((sim.time(), sim.probe_pressure(&apex)));
+        // before the apex is wetted it reads zero gauge pressure (air)
+        signal.push((sim.time(), sim.probe_pressure(&apex).unwrap_or(0.0)));
     }
     signal
 }

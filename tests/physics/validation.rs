@@ -172,7 +172,9 @@ fn patch_impact(diffusion: &str) -> Impact {
         sim.step().unwrap();
         if (0.2 * release..0.8 * release).contains(&sim.time()) {
             sim.sync_pressure();
-            sum += sim.probe_pressure(&origin);
+            sum += sim
+                .probe_pressure(&origin)
+                .expect("the patch centre is wet");
             n += 1;
         }
     }
@@ -183,7 +185,7 @@ fn patch_impact(diffusion: &str) -> Impact {
         .collect();
     let noise = inner
         .iter()
-        .map(|&i| (p.p[i] - sim.probe_pressure(&p.x[i])).powi(2))
+        .map(|&i| (p.p[i] - sim.probe_pressure(&p.x[i]).expect("a fluid particle")).powi(2))
         .sum::<f64>()
         / inner.len() as f64;
     Impact {

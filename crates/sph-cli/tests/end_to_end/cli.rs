@@ -1,9 +1,7 @@
 //! End-to-end behaviour of the `sph-cli` binary: checks, errors, output safety and
 //! the stability guard.
 
-mod common;
-
-use common::{cli, cli_within, example, scratch, small_case};
+use crate::common::{cli, cli_within, example, scratch, small_case};
 use std::path::Path;
 use std::time::Duration;
 
@@ -415,4 +413,18 @@ fn check_refuses_unreachable_probes_and_thin_walls() {
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.starts_with(expected), "{err}");
     }
+}
+
+/// The schema shipped for editors is the one the case types give today.
+#[test]
+fn the_shipped_case_schema_is_current() {
+    let out = cli(&["schema"]);
+    assert!(out.status.success());
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/case.schema.json");
+    let shipped = std::fs::read_to_string(shipped).unwrap();
+    assert!(
+        String::from_utf8_lossy(&out.stdout) == shipped,
+        "docs/case.schema.json is stale: regenerate it with \
+         `cargo run --release -p sph-cli -- schema > docs/case.schema.json`"
+    );
 }

@@ -37,7 +37,7 @@ fn pressure_noise(sim: &mut Simulation<2>) -> f64 {
     let bulk: Vec<usize> = (0..p.len()).filter(|&i| surface.lambda[i] > 0.75).collect();
     let sum: f64 = bulk
         .iter()
-        .map(|&i| (p.p[i] - sim.probe_pressure(&p.x[i])).powi(2))
+        .map(|&i| (p.p[i] - sim.probe_pressure(&p.x[i]).expect("a fluid particle")).powi(2))
         .sum();
     (sum / bulk.len() as f64).sqrt() / 1000.0
 }

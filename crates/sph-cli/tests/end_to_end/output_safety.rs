@@ -2,9 +2,7 @@
 //! that is not a run folder is never used, and a case name cannot point outside the
 //! working folder.
 
-mod common;
-
-use common::{cli, scratch, small_case};
+use crate::common::{cli, scratch, small_case};
 use std::fs;
 use std::path::Path;
 use std::process::Command;

@@ -101,7 +101,10 @@ fn benchmark_front_reaches_the_wall_when_p1_rises() {
             arrival = Some(t);
         }
         sim.sync_pressure();
-        if sim.probe_pressure(&p1) > 0.05 * rho0 * g * h {
+        if sim
+            .probe_pressure(&p1)
+            .is_some_and(|p| p > 0.05 * rho0 * g * h)
+        {
             rise = Some(t);
         }
     }

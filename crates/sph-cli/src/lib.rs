@@ -1,0 +1,470 @@
+//! The deltasph command line: runs, checks and previews TOML cases. The `sph-cli`
+//! binary and the Python wheel's `deltasph` command are both [`main_with`].
+
+use anyhow::Result;
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1};
+use signal_hook::flag;
+use sph_core::io::output::Output;
+use sph_core::io::restart;
+use sph_core::run::{Control, Ending, Run};
+use sph_core::{Case, Simulation, SphError};
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+#[derive(Parser)]
+#[command(
+    name = "sph-cli",
+    version,
+    about = "Weakly-compressible δ-SPH solver: run and check TOML cases"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a case (or continue one from a restart file) and write HDF5/XDMF snapshots,
+    /// CSV time series and restart files.
+    Run {
+        /// The case file (not with --restart).
+        #[arg(required_unless_present = "restart", conflicts_with = "restart")]
+        case: Option<PathBuf>,
+        /// Output folder (default: `<case name>_out` in the current folder; with
+        /// --restart, the restart file's folder).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Replace the files of an earlier run in the output folder (files deltasph did
+        /// not write are kept; a folder that is not a run folder is refused). With
+        /// --restart: replace snapshots written after the restart point.
+        #[arg(long)]
+        force: bool,
+        /// Continue the run saved in this restart file, bit for bit. Runs write
+        /// `restart.h5` (the one before kept as `restart.prev.h5`) on the case's
+        /// `output.restart_interval`, every --checkpoint-every, at the end, on a stop
+        /// signal and when an output write fails.
+        #[arg(long, value_name = "FILE")]
+        restart: Option<PathBuf>,
+        /// End time [s], replacing the case's `time.end`.
+        #[arg(long, value_name = "SECONDS")]
+        until: Option<f64>,
+        /// Also write a restart file after this much wall time, e.g. `30min`, `2h`, `90s`.
+        #[arg(long, value_name = "DURATION", value_parser = parse_duration)]
+        checkpoint_every: Option<Duration>,
+        /// No progress bar.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Validate a case without running it, and report what it builds: particles and
+    /// bounds of each fluid region and wall, and the closest fluid to a wall.
+    Check {
+        /// The case file.
+        case: PathBuf,
+    },
+    /// Write the initial particles of a case (an HDF5/XDMF snapshot for ParaView and,
+    /// in 2D, preview.png) without running it.
+    Preview {
+        /// The case file.
+        case: PathBuf,
+        /// Output folder (default: `<case name>_preview`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Replace the files of an earlier preview or run in the output folder.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Print the JSON Schema of the case file, for TOML editors (Taplo, Even Better
+    /// TOML): save it and start a case file with `#:schema ./case.schema.json`.
+    Schema,
+}
+
+fn parse_duration(text: &str) -> std::result::Result<Duration, String> {
+    let d = humantime::parse_duration(text)
+        .map_err(|e| format!("{e}: expected a duration such as 30min, 2h or 90s"))?;
+    if d.is_zero() {
+        return Err("expected a duration above zero".into());
+    }
+    Ok(d)
+}
+
+/// The signals that end a run with a restart file: Ctrl-C, a kill, a closed terminal,
+/// and the pre-emption warning of batch schedulers.
+const STOP_SIGNALS: [i32; 4] = [SIGINT, SIGTERM, SIGHUP, SIGUSR1];
+
+fn signal_name(sig: usize) -> &'static str {
+    match sig as i32 {
+        SIGINT => "SIGINT",
+        SIGTERM => "SIGTERM",
+        SIGHUP => "SIGHUP",
+        SIGUSR1 => "SIGUSR1",
+        _ => "a signal",
+    }
+}
+
+/// An ending that is not a success: the message and the exit code.
+#[derive(Debug)]
+struct Failure {
+    message: String,
+    code: u8,
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Failure {}
+
+/// Runs the command line `args` (the program's own name first) as `program`, the
+/// name its help and messages use, with `after_help` at the end of its help. Returns
+/// the exit code: 0 success, 2 bad input or output problem, 3 the run went unstable,
+/// 128 + n when signal n stopped it (a restart file was written).
+pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -> u8 {
+    let mut command = Cli::command()
+        .name(program.to_string())
+        .bin_name(program.to_string());
+    if let Some(text) = after_help {
+        command = command.after_help(text.to_string());
+    }
+    let cli = match command
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { 2 } else { 0 };
+        }
+    };
+    let result = match cli.command {
+        Command::Run {
+            case,
+            out,
+            force,
+            restart,
+            until,
+            checkpoint_every,
+            quiet,
+        } => {
+            let options = RunOptions {
+                program: program.to_string(),
+                out,
+                force,
+                until,
+                checkpoint_every,
+                quiet,
+            };
+            match (case, restart) {
+                (_, Some(file)) => resume(&file, options),
+                (Some(case), None) => run(&case, options),
+                (None, None) => unreachable!("clap requires a case or --restart"),
+            }
+        }
+        Command::Check { case } => check(&case),
+        Command::Preview { case, out, force } => preview(&case, out, force),
+        Command::Schema => {
+            print!("{}", sph_core::case::json_schema::case_schema());
+            Ok(())
+        }
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.downcast_ref::<Failure>()
+                .map_or(2, |failure| failure.code)
+        }
+    }
+}
+
+fn preview(path: &Path, out: Option<PathBuf>, force: bool) -> Result<()> {
+    let case = Case::from_file(path)?;
+    let dir = out.unwrap_or_else(|| PathBuf::from(format!("{}_preview", case.name)));
+    let written = match case.dimension {
+        2 => preview_into(Simulation::<2>::new(case)?, &dir, force)?,
+        _ => preview_into(Simulation::<3>::new(case)?, &dir, force)?,
+    };
+    for path in written {
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn preview_into<const D: usize>(
+    sim: Simulation<D>,
+    dir: &Path,
+    force: bool,
+) -> Result<Vec<PathBuf>> {
+    let mut output = Output::create(dir, force)?;
+    Ok(sph_core::io::preview::write(&sim, &mut output)?)
+}
+
+fn check(path: &Path) -> Result<()> {
+    let case = Case::from_file(path)?;
+    let (summary, report) = match case.dimension {
+        2 => describe::<2>(&case)?,
+        _ => describe::<3>(&case)?,
+    };
+    println!(
+        "{}: valid {}D case '{}': {summary}\n{report}",
+        path.display(),
+        case.dimension,
+        case.name,
+    );
+    Ok(())
+}
+
+/// The particle counts, and the report of what each region built.
+fn describe<const D: usize>(case: &Case) -> Result<(String, String)> {
+    let setup = sph_core::geometry::build::<D>(case)?;
+    let report = setup.report(case.dx(), case.support());
+    let sim = Simulation::<D>::new(case.clone())?;
+    let (fluid, all) = (sim.n_fluid(), sim.particles().len());
+    let summary = format!("{fluid} fluid and {} wall particles", all - fluid);
+    Ok((summary, report))
+}
+
+struct RunOptions {
+    /// The command's name, for the commands the messages suggest.
+    program: String,
+    out: Option<PathBuf>,
+    force: bool,
+    until: Option<f64>,
+    checkpoint_every: Option<Duration>,
+    quiet: bool,
+}
+
+fn run(path: &Path, options: RunOptions) -> Result<()> {
+    let mut case = Case::from_file(path)?;
+    if let Some(end) = options.until {
+        if !(end > 0.0 && end.is_finite()) {
+            return Err(SphError::invalid("--until", end, "a positive end time in seconds").into());
+        }
+        case.time.end = end;
+    }
+    let out = (options.out.clone()).unwrap_or_else(|| PathBuf::from(format!("{}_out", case.name)));
+    // build first: a case that does not build leaves no folder behind
+    let text = std::fs::read_to_string(path)?;
+    match case.dimension {
+        2 => start(Simulation::<2>::new(case)?, &out, &text, &options),
+        _ => start(Simulation::<3>::new(case)?, &out, &text, &options),
+    }
+}
+
+fn start<const D: usize>(
+    mut sim: Simulation<D>,
+    out: &Path,
+    case_text: &str,
+    options: &RunOptions,
+) -> Result<()> {
+    let mut output = Output::create(out, options.force)?;
+    output.write_text("case.toml", case_text)?;
+    let run = Run::start(&mut sim, output)?;
+    drive(sim, run, options)
+}
+
+fn resume(file: &Path, options: RunOptions) -> Result<()> {
+    let dir = match options.out.clone() {
+        Some(dir) => dir,
+        None => file
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from(".")),
+    };
+    match restart::dimension(file)? {
+        2 => resume_in::<2>(file, &dir, options),
+        _ => resume_in::<3>(file, &dir, options),
+    }
+}
+
+fn resume_in<const D: usize>(file: &Path, dir: &Path, options: RunOptions) -> Result<()> {
+    let (checkpoint, schedule) = restart::read::<D>(file)?;
+    let sim = Simulation::<D>::from_checkpoint(checkpoint, options.until)?;
+    let mut output = Output::resume(dir, schedule.snapshots, options.force)?;
+    output.resume_series(&sim.series_header(), sim.time())?;
+    let run = Run::resume(&sim, output, schedule);
+    drive(sim, run, &options)
+}
+
+fn progress_bar(quiet: bool) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(1000);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {percent:>3}% t = {msg} ETA {eta}")
+            .expect("static template"),
+    );
+    bar
+}
+
+/// The stop signals set a flag that the step loop reads between steps; a second
+/// signal of any of them ends the process at once.
+fn stop_signal() -> Result<Arc<AtomicUsize>> {
+    let which = Arc::new(AtomicUsize::new(0));
+    let pending = Arc::new(AtomicBool::new(false));
+    for sig in STOP_SIGNALS {
+        flag::register_conditional_shutdown(sig, 128 + sig, Arc::clone(&pending))?;
+        flag::register(sig, Arc::clone(&pending))?;
+        flag::register_usize(sig, Arc::clone(&which), sig as usize)?;
+    }
+    Ok(which)
+}
+
+/// Drives the run, prints the summary and turns its ending into the exit status.
+fn drive<const D: usize>(mut sim: Simulation<D>, mut run: Run, options: &RunOptions) -> Result<()> {
+    let signal = stop_signal()?;
+    let bar = progress_bar(options.quiet);
+    let start = Instant::now();
+    let first_step = sim.counters().steps;
+    let end = sim.case().time.end;
+    let mut on_step = |sim: &Simulation<D>| {
+        let steps = sim.counters().steps - first_step;
+        let steps_per_s = steps as f64 / start.elapsed().as_secs_f64();
+        bar.set_position((1000.0 * sim.time() / end) as u64);
+        bar.set_message(format!(
+            "{:.4} s, {} steps, {steps_per_s:.1} steps/s",
+            sim.time(),
+            sim.counters().steps
+        ));
+    };
+    let ending = run.drive(
+        &mut sim,
+        &mut Control {
+            checkpoint_every: options.checkpoint_every,
+            stop: &signal,
+            on_step: &mut on_step,
+            slice: None,
+        },
+    );
+    bar.finish_and_clear();
+    summary(&sim, &run);
+    let (time, step) = (sim.time(), sim.counters().steps);
+    let failure = |code: u8, message: String| Err(Failure { message, code }.into());
+    match ending {
+        Ending::Finished { restart } => {
+            println!("restart         {}", restart.display());
+            Ok(())
+        }
+        Ending::Stopped { signal, restart } => {
+            println!("restart         {}", restart.display());
+            failure(
+                128 + signal as u8,
+                format!(
+                    "interrupted by {} at t = {time:.6} s (step {step}); continue with: \
+                     {} run --restart {}",
+                    signal_name(signal),
+                    options.program,
+                    restart.display()
+                ),
+            )
+        }
+        Ending::Paused => unreachable!("a run without a slice is never paused"),
+        Ending::Unstable { error, snapshot } => {
+            match snapshot {
+                Ok(path) => println!(
+                    "last snapshot   {} (the state at which the run stopped)",
+                    path.display()
+                ),
+                Err(e) => println!("last snapshot   not written: {e}"),
+            }
+            failure(3, error.to_string())
+        }
+        Ending::OutputFailed { error, restart } => {
+            let what = match restart {
+                Ok(path) => format!(
+                    "restart file written at t = {time:.6} s (step {step}): once there is room, \
+                     continue with: {} run --restart {} --force",
+                    options.program,
+                    path.display()
+                ),
+                Err(e) => format!("no restart file could be written either ({e})"),
+            };
+            failure(2, format!("{error}; {what}"))
+        }
+    }
+}
+
+fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
+    let (output, since) = (&run.output, run.since);
+    let wall = run.wall.as_secs_f64();
+    let n = sim.n_fluid();
+    let c = sim.counters();
+    let e1 = sim.energies();
+    let initial_energy = run.schedule.initial_energy;
+    println!("case            {} ({}D)", sim.case().name, D);
+    println!(
+        "particles       {} fluid, {} wall",
+        n,
+        sim.particles().len() - n
+    );
+    println!(
+        "scheme          {:?} diffusion (δ = {}), {:?} viscosity, {:?}, CFL {}",
+        sim.case().scheme.diffusion,
+        sim.case().scheme.delta,
+        sim.case().scheme.viscosity,
+        sim.case().scheme.integrator,
+        sim.case().scheme.cfl()
+    );
+    println!("sound speed     c0 = {:.4} m/s", sim.physics().eos.c0);
+    println!(
+        "simulated       t = {:.6} s in {} steps (last Δt = {:.3e} s)",
+        sim.time(),
+        c.steps,
+        sim.dt()
+    );
+    println!("wall time       {wall:.2} s");
+    println!(
+        "throughput      {:.3e} particle-steps/s, {:.3e} particle-evaluations/s, {} list builds",
+        n as f64 * (c.steps - since.steps) as f64 / wall,
+        n as f64 * (c.evaluations - since.evaluations) as f64 / wall,
+        c.rebuilds
+    );
+    let (listed, used) = sim.mean_neighbours();
+    println!(
+        "neighbours      {listed:.1} listed per particle (fluid and wall, with the skin), \
+         {used:.1} in the rows of the last step"
+    );
+    println!("max |Δρ/ρ0|     {:.3e}", sim.max_density_variation());
+    println!(
+        "walls           {} fluid particles inside a wall at the end",
+        sim.wall_crossings()
+    );
+    let (lo, hi) = (sim.domain().lo, sim.domain().hi);
+    println!(
+        "removed         {} fluid particles left the domain {:?} – {:?}",
+        sim.removed(),
+        lo.as_slice(),
+        hi.as_slice()
+    );
+    println!(
+        "energy          E_k+E_p+E_c: {:.6e} → {:.6e} J (change {:+.3e})",
+        initial_energy,
+        e1.total(),
+        e1.total() - initial_energy
+    );
+    if let Some(b) = sim.budget() {
+        println!(
+            "                ∫(P_V+P_D+P_W)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
+            b.work(),
+            b.removed_energy
+        );
+        let caveats = sim.budget_caveats();
+        if !caveats.is_empty() {
+            println!(
+                "                the budget is incomplete: {}",
+                caveats.join("; ")
+            );
+        }
+    }
+    println!(
+        "output          {} (open particles.xmf in ParaView)",
+        output.dir().display()
+    );
+}

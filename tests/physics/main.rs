@@ -1,0 +1,16 @@
+//! The physics tests of deltasph: analytic solutions, published references and
+//! conservation laws, one module per flow or property, in one test binary (one link).
+
+mod conservation;
+mod dam_break;
+mod dam_break_3d;
+mod free_surface;
+mod hydrostatic;
+mod loads;
+mod long_runs;
+mod shifting;
+mod taylor_green;
+mod time_integration;
+mod validation;
+mod walls;
+mod water_wedge;

@@ -1,0 +1,109 @@
+"""The case file's JSON Schema (docs/case.schema.json, printed by `sph-cli schema`;
+crates/sph-cli/tests/end_to_end/cli.rs checks that the two agree): every example case conforms, an
+unknown or misspelt key is flagged as an editor would flag it, and the README's
+case-file reference names exactly the keys of the schema."""
+
+import json
+import re
+
+import jsonschema
+import pytest
+
+from conftest import EXAMPLES, ROOT, tomllib
+
+SCHEMA = json.loads((ROOT / "docs" / "case.schema.json").read_text())
+
+#: Keys the schema allows because `[[fluid_block]]` and `[[wall]]` share one table type,
+#: and that the case's validation refuses in one line (crates/sph-core/src/case/validate.rs).
+SHARED_BUT_REFUSED = {"wall.velocity", "wall.hydrostatic", "wall.surface", "wall.shape",
+                      "fluid_block.name"}
+
+
+def resolve(node):
+    """A subschema with its $ref followed."""
+    while "$ref" in node:
+        node = SCHEMA["$defs"][node["$ref"].split("/")[-1]]
+    return node
+
+
+def table_of(node):
+    """The table a key holds (its schema), if it holds a table or an array of tables."""
+    node = resolve(node)
+    if node.get("type") == "array":
+        node = resolve(node.get("items", {}))
+    if "properties" in node or "oneOf" in node:
+        return node
+    return None
+
+
+def keys_of(node):
+    """The keys of a table schema; the union over the variants of a tagged one."""
+    if "oneOf" in node:
+        return set().union(*(keys_of(resolve(v)) for v in node["oneOf"]))
+    return set(node.get("properties", {}))
+
+
+def schema_keys():
+    """`key` for top-level keys, `table.key` for the keys of tables and arrays of tables,
+    and `table.sub.key` for arrays of tables inside a table (`[[diagnostics.sensors]]`)."""
+    found = set()
+    for key, node in SCHEMA["properties"].items():
+        table = table_of(node)
+        if table is None:
+            found.add(key)
+            continue
+        for sub in keys_of(table):
+            inner = resolve(table.get("properties", {}).get(sub, {}))
+            if inner.get("type") == "array" and table_of(inner) is not None:
+                found.update(f"{key}.{sub}.{k}" for k in keys_of(table_of(inner)))
+            else:
+                found.add(f"{key}.{sub}")
+    return found - SHARED_BUT_REFUSED
+
+
+def readme_keys():
+    """The keys of the README's case-file reference: the first cell of each row, e.g.
+    `[[tank]] lo, hi, layers` or `[initial] type = "taylor_green", amplitude`."""
+    text = (ROOT / "README.md").read_text()
+    section = text.split("## Case-file reference", 1)[1].split("\n## ", 1)[0]
+    found = set()
+    for row in re.findall(r"^\| `([^|]+?)` \|", section, flags=re.M):
+        row = re.sub(r"\{[^}]*\}", "", row.replace("`", ""))  # `reference = { ... }`
+        cells = [c.strip() for c in row.split(",")]
+        match = re.match(r"\[\[?([\w.]+)\]\]?\s+(.*)", cells[0])
+        table, cells[0] = (match.group(1), match.group(2)) if match else (None, cells[0])
+        for cell in cells:
+            key = re.split(r"\s*=", cell)[0].strip()
+            found.add(f"{table}.{key}" if table else key)
+    return found
+
+
+def test_the_readme_reference_names_the_schema_keys():
+    schema, readme = schema_keys(), readme_keys()
+    assert not schema - readme, f"keys missing from the README's reference: {schema - readme}"
+    assert not readme - schema, f"README keys the case file does not have: {readme - schema}"
+
+
+def example_cases():
+    return sorted(EXAMPLES.rglob("*.toml"))
+
+
+@pytest.mark.parametrize("path", example_cases(), ids=lambda p: p.name)
+def test_every_example_conforms(path):
+    with open(path, "rb") as f:
+        jsonschema.validate(tomllib.load(f), SCHEMA)
+
+
+def test_editors_flag_unknown_keys_and_wrong_values():
+    with open(EXAMPLES / "dam_break_2d.toml", "rb") as f:
+        case = tomllib.load(f)
+    case["scheme"]["difusion"] = "delta_sph"
+    with pytest.raises(jsonschema.ValidationError, match="difusion"):
+        jsonschema.validate(case, SCHEMA)
+    del case["scheme"]["difusion"]
+    case["scheme"]["integrator"] = "euler"
+    with pytest.raises(jsonschema.ValidationError, match="euler"):
+        jsonschema.validate(case, SCHEMA)
+    del case["particles"]
+    with pytest.raises(jsonschema.ValidationError, match="particles"):
+        jsonschema.validate(case, SCHEMA)

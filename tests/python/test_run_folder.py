@@ -1,0 +1,154 @@
+"""Run folders from Python: ``Simulation.run(out=...)`` writes the command line's run
+folder file for file, ``Simulation.from_restart`` continues one bit for bit, ``ds.load``
+reads folders back, and the ``deltasph`` command is the command line's."""
+
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+import deltasph as ds
+from conftest import EXAMPLES, example
+from test_simulation import cli_binary
+
+#: A dry probe (the top of the right wall) beside the two wetted ones of the example.
+DRY = [3.2196, 1.7]
+
+
+def case_file(tmp_path, end=0.1):
+    """The 2D dam break at H/Δx = 20 to `end`, snapshots every 0.025 s, as a TOML file."""
+    config = example("dam_break_2d", particles__spacing=0.03, time__end=end,
+                     time__output_interval=0.025)
+    config["diagnostics"]["probes"] = [[0.6, 0.015], DRY]
+    path = tmp_path / "case.toml"
+    path.write_text(ds.Simulation(config).to_toml())
+    return path
+
+
+def cli(*args):
+    return subprocess.run([cli_binary(), *map(str, args), "--quiet"], check=True,
+                          capture_output=True, text=True)
+
+
+def assert_same_folders(a, b):
+    """Every snapshot array, the index and the time series are equal."""
+    snaps = sorted(p.name for p in a.glob("particles_*.h5"))
+    assert snaps and snaps == sorted(p.name for p in b.glob("particles_*.h5"))
+    for name in snaps:
+        with h5py.File(a / name) as x, h5py.File(b / name) as y:
+            assert sorted(x) == sorted(y), name
+            for field in x:
+                np.testing.assert_array_equal(x[field][:], y[field][:], err_msg=field)
+            assert x.attrs["time"] == y.attrs["time"] and x.attrs["step"] == y.attrs["step"]
+    for name in ("particles.xmf", "timeseries.csv"):
+        assert (a / name).read_text() == (b / name).read_text(), name
+    for name in ("restart.h5", "case.toml"):
+        assert (b / name).is_file(), name
+
+
+def test_python_writes_the_cli_run_folder(tmp_path):
+    case = case_file(tmp_path)
+    cli("run", case, "--out", tmp_path / "cli")
+    sim = ds.Simulation.from_toml(case)
+    sim.run(out=tmp_path / "py")
+    assert_same_folders(tmp_path / "cli", tmp_path / "py")
+    assert len(list((tmp_path / "py").glob("particles_*.h5"))) == 5  # t = 0, 0.025, ..., 0.1
+
+
+def test_from_restart_continues_the_folder_bit_for_bit(tmp_path):
+    case = case_file(tmp_path, end=0.05)
+    cli("run", case, "--out", tmp_path / "cli")
+    shutil.copytree(tmp_path / "cli", tmp_path / "py")
+    cli("run", "--restart", tmp_path / "cli" / "restart.h5", "--until", 0.1)
+    sim = ds.Simulation.from_restart(tmp_path / "py" / "restart.h5")
+    assert sim.time == pytest.approx(0.05, abs=1e-12)
+    sim.run(until=0.1, out=tmp_path / "py")
+    assert_same_folders(tmp_path / "cli", tmp_path / "py")
+
+
+def test_run_folders_keep_what_users_own(tmp_path):
+    case = case_file(tmp_path, end=0.03)
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("keep")
+    with pytest.raises(OSError, match="mine"):
+        ds.Simulation.from_toml(case).run(out=mine)
+    assert (mine / "notes.txt").read_text() == "keep" and len(list(mine.iterdir())) == 1
+    out = tmp_path / "out"
+    first = ds.Simulation.from_toml(case)
+    first.run(until=0.01, out=out)
+    first.run(until=0.03, out=out)  # the same simulation goes on in its folder
+    assert ds.load(out).times[-1] == pytest.approx(0.03, abs=1e-12)
+    with pytest.raises(OSError, match="holds an earlier run"):
+        ds.Simulation.from_toml(case).run(out=out)
+    (out / "notes.txt").write_text("keep")
+    ds.Simulation.from_toml(case).run(until=0.01, out=out, force=True)
+    assert (out / "notes.txt").read_text() == "keep"
+    assert ds.load(out).times[-1] == pytest.approx(0.01, abs=1e-12)
+    with pytest.raises(ValueError, match="only with out="):
+        ds.Simulation.from_toml(case).run(until=0.01, output_interval=0.005)
+
+
+def test_load_reads_snapshots_series_and_case(tmp_path):
+    case = case_file(tmp_path)
+    sim = ds.Simulation.from_toml(case)
+    sim.run(out=tmp_path / "run", output_interval=0.05)
+    run = ds.load(tmp_path / "run")
+    # snapshots come at the first step at or past each output time, the last at the end
+    # (the index holds times to 10 significant digits, the snapshots exactly)
+    assert run.times[0] == 0.0 and run.times[2] == pytest.approx(0.1, abs=1e-12)
+    assert 0.05 <= run.times[1] < 0.05 + 2e-3 and len(run) == 3
+    last = run[-1]
+    assert last.time == sim.time and last.step == sim.n_steps
+    for name, mine in (("position", sim.positions), ("velocity", sim.velocities),
+                       ("pressure", sim.pressure), ("kind", sim.kind)):
+        np.testing.assert_array_equal(last[name], mine, err_msg=name)
+    assert last["position"].shape == (sim.n_particles, 2)
+    assert run.at(0.04).path.name == "particles_000001.h5" and run.at(0.09).time == sim.time
+    assert run.case["particles"]["spacing"] == 0.03 and last.spacing == 0.03
+    assert run.restart == tmp_path / "run" / "restart.h5"
+    series = run.series
+    assert series["time"][-1] == pytest.approx(0.1)
+    # a probe with no fluid in reach reads NaN, one at the bottom of the column does not
+    assert np.isnan(series["probe1_pressure"]).all()
+    assert np.isfinite(series["probe0_pressure"]).all() and series["probe0_pressure"][0] > 0
+    with pytest.raises(FileNotFoundError, match="not a run folder"):
+        ds.load(tmp_path)
+
+
+def deltasph(*args):
+    """The ``deltasph`` command, as its console script runs it."""
+    return subprocess.run([sys.executable, "-c", "import sys, deltasph._cli as c; "
+                           "sys.exit(c.main())", *map(str, args)],
+                          capture_output=True, text=True)
+
+
+def test_the_deltasph_command_is_the_cli(tmp_path):
+    case = EXAMPLES / "dam_break_2d.toml"
+    ours = deltasph("check", case)
+    theirs = subprocess.run([cli_binary(), "check", case], capture_output=True, text=True)
+    assert ours.returncode == theirs.returncode == 0
+    assert ours.stdout == theirs.stdout
+    bad = deltasph("run", tmp_path / "missing.toml")
+    assert bad.returncode == 2 and bad.stderr.startswith("error: ")
+    usage = deltasph("--help")
+    assert usage.returncode == 0 and "Usage: deltasph" in usage.stdout
+    assert "deltasph plot" in usage.stdout
+
+
+def test_deltasph_plot_writes_pngs(tmp_path):
+    case = case_file(tmp_path, end=0.05)
+    ds.Simulation.from_toml(case).run(out=tmp_path / "run")
+    done = deltasph("plot", tmp_path / "run", "--count", "2", "--field", "pressure",
+                    "--field", "velocity")
+    assert done.returncode == 0, done.stderr
+    pngs = sorted(p.name for p in (tmp_path / "run" / "plots").glob("*.png"))
+    assert "particles_000000_pressure.png" in pngs and "particles_000002_velocity.png" in pngs
+    assert {"series_energy.png", "series_probes.png", "series_surge_front.png"} <= set(pngs)
+    for p in (tmp_path / "run" / "plots").glob("*.png"):
+        assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    missing = deltasph("plot", tmp_path / "nothing")
+    assert missing.returncode == 2 and "not a run folder" in missing.stderr

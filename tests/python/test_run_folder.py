@@ -2,9 +2,12 @@
 folder file for file, ``Simulation.from_restart`` continues one bit for bit, ``ds.load``
 reads folders back, and the ``deltasph`` command is the command line's."""
 
+import os
 import shutil
+import signal
 import subprocess
 import sys
+import threading
 
 import h5py
 import numpy as np
@@ -90,6 +93,28 @@ def test_run_folders_keep_what_users_own(tmp_path):
     assert ds.load(out).times[-1] == pytest.approx(0.01, abs=1e-12)
     with pytest.raises(ValueError, match="only with out="):
         ds.Simulation.from_toml(case).run(until=0.01, output_interval=0.005)
+
+
+def test_ctrl_c_in_a_folder_run_leaves_a_restart_that_continues_it(tmp_path):
+    """Ctrl-C: a last snapshot and a restart file, then KeyboardInterrupt naming it; the
+    restart continues to the same end state as an uninterrupted run."""
+    case = case_file(tmp_path, end=100.0)
+    sim = ds.Simulation.from_toml(case)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt, match="from_restart"):
+        sim.run(until=100.0, out=tmp_path / "run")
+    run = ds.load(tmp_path / "run")
+    assert 0.0 < sim.time < 100.0 and run[-1].time == sim.time
+    end = sim.time + 0.02
+    again = ds.Simulation.from_restart(run.restart)
+    assert again.time == sim.time
+    again.run(until=end, out=tmp_path / "run")
+    whole = ds.Simulation.from_toml(case)
+    whole.step(sim.n_steps)
+    whole.run(until=end)
+    np.testing.assert_array_equal(again.positions, whole.positions)
+    assert ds.load(tmp_path / "run")[-1].time == end
 
 
 def test_load_reads_snapshots_series_and_case(tmp_path):

@@ -29,14 +29,16 @@ UNITS = {
     "position": "m",
 }
 
-#: Time-series panels: a title, a pattern of the columns it draws, and their unit.
+#: Time-series panels: a title, a pattern of the columns it draws, and the axis label.
 PANELS = [
-    ("energy", r"^(kinetic|potential|internal|total|work_of_dissipation_and_walls)$", "J"),
-    ("power", r"^(viscous|diffusive|wall)_power$", "W"),
-    ("probes", r"_pressure$|_point$|_filtered$", "Pa"),
-    ("density", r"^max_density_variation$", "–"),
-    ("surge front", r"^surge_front$", "m"),
-    ("loads", r"_(pressure|viscous)_f[xyz]$|_moment_[xyz]$|_c[xyz]$", "N, N m or –"),
+    ("energy", r"^(kinetic|potential|internal|total|work_of_dissipation_and_walls)$",
+     "energy [J]"),
+    ("power", r"^(viscous|diffusive|wall)_power$", "power [W]"),
+    ("probes", r"_pressure$|_point$|_filtered$", "pressure [Pa] (gaps: no fluid in reach)"),
+    ("density", r"^max_density_variation$", "max |ρ/ρ0 − 1|"),
+    ("surge front", r"^surge_front$", "front [m]"),
+    ("loads", r"_(pressure|viscous)_f[xyz]$|_moment_[xyz]$|_c[xyz]$",
+     "force [N], moment [N m], coefficient"),
 ]
 
 
@@ -73,8 +75,9 @@ def _values(fields, field):
 
 
 def _marker_size(ax, spacing, fig):
-    """Marker area (points²) of a disc Δx across, in the axes' data scale."""
-    ax.apply_aspect()
+    """Marker area (points²) of a disc Δx across, in the axes' data scale once the
+    figure is laid out."""
+    fig.canvas.draw()
     x0, x1 = ax.transData.transform([(0.0, 0.0), (spacing, 0.0)])[:, 0]
     points = abs(x1 - x0) * 72.0 / fig.dpi
     return max(points, 0.5) ** 2
@@ -105,11 +108,10 @@ def snapshot(source, field="pressure", ax=None, spacing=None, cmap="viridis", sc
     ax.set_aspect("equal")
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
-    size = _marker_size(ax, spacing, fig)
     wall, fluid = kind == 1, kind == 0
-    ax.scatter(x[wall, axes[0]], x[wall, axes[1]], s=size, c="0.6", marker="s",
-               linewidths=0)
-    dots = ax.scatter(x[fluid, axes[0]], x[fluid, axes[1]], s=size, c=values[fluid],
+    walls = ax.scatter(x[wall, axes[0]], x[wall, axes[1]], c="0.6", marker="s",
+                       linewidths=0)
+    dots = ax.scatter(x[fluid, axes[0]], x[fluid, axes[1]], c=values[fluid],
                       cmap=cmap, vmin=vmin, vmax=vmax, linewidths=0)
     ax.set_xlabel(f"{'xyz'[axes[0]]} [m]")
     ax.set_ylabel(f"{'xyz'[axes[1]]} [m]")
@@ -118,6 +120,9 @@ def snapshot(source, field="pressure", ax=None, spacing=None, cmap="viridis", sc
     name = f"|{field}|" if np.ndim(fields[field]) == 2 else field
     label = label or (f"{name} [{unit}]" if unit else name)
     fig.colorbar(dots, ax=ax, label=label, shrink=0.9)
+    size = _marker_size(ax, spacing, fig)  # after the colour bar has taken its room
+    walls.set_sizes([1.1 * size])  # squares overlapping slightly: no antialiasing seams
+    dots.set_sizes([size])
     return fig
 
 
@@ -129,7 +134,7 @@ def series(run):
     data = run.series
     t = data["time"]
     figures = {}
-    for title, pattern, unit in PANELS:
+    for title, pattern, ylabel in PANELS:
         columns = [c for c in data if c not in ("time", "step", "dt") and re.search(pattern, c)]
         if not columns:
             continue
@@ -137,7 +142,7 @@ def series(run):
         for c in columns:
             ax.plot(t, data[c], lw=1.0, label=c)
         ax.set_xlabel("t [s]")
-        ax.set_ylabel(f"{title} [{unit}]")
+        ax.set_ylabel(ylabel)
         ax.set_title(f"{run.path.name}: {title}")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8, ncol=2 if len(columns) > 4 else 1)

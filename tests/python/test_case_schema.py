@@ -84,6 +84,12 @@ def test_the_readme_reference_names_the_schema_keys():
     assert not readme - schema, f"README keys the case file does not have: {readme - schema}"
 
 
+def test_the_module_ships_the_same_schema():
+    import deltasph as ds
+
+    assert json.loads(ds.case_schema()) == SCHEMA
+
+
 def example_cases():
     return sorted(EXAMPLES.rglob("*.toml"))
 

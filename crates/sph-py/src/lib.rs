@@ -15,6 +15,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::PySimulation>()?;
     m.add_function(wrap_pyfunction!(folder::read_snapshot, m)?)?;
     m.add_function(wrap_pyfunction!(cli, m)?)?;
+    m.add_function(wrap_pyfunction!(case_schema, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
@@ -29,4 +30,10 @@ const PLOT_HELP: &str = "Also: deltasph plot <run folder> writes PNGs of its sna
 fn cli(py: Python<'_>, args: Vec<std::ffi::OsString>) -> u8 {
     let argv = std::iter::once("deltasph".into()).chain(args).collect();
     py.detach(|| sph_cli::main_with("deltasph", argv, Some(PLOT_HELP)))
+}
+
+/// The JSON Schema of the case file (what ``sph-cli schema`` prints), as text.
+#[pyfunction]
+fn case_schema() -> String {
+    sph_core::case::json_schema::case_schema()
 }

@@ -10,9 +10,13 @@ the particle state as numpy arrays::
 
 All quantities are SI. Arrays are copies in particle-id order (row i is always the
 particle created i-th), so they can be compared across steps and edited freely.
+
+``sim.run(out="folder")`` writes the command line's run folder, ``ds.load("folder")``
+reads one back, ``deltasph.plot`` draws it, ``ds.case_schema()`` is the case file's
+JSON Schema for editors.
 """
 
-from ._core import Simulation, __version__
+from ._core import Simulation, __version__, case_schema
 from .errors import ConfigError, ConfigKeyError, InstabilityError
 from .runs import RunFolder, Snapshot, load
 
@@ -28,6 +32,7 @@ __all__ = [
     "ConfigKeyError",
     "InstabilityError",
     "RunFolder",
+    "case_schema",
     "Snapshot",
     "load",
     "__version__",

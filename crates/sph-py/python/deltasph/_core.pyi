@@ -142,3 +142,6 @@ def read_snapshot(path: Union[str, PathLike[str]]) -> tuple[float, int, dict[str
 
 def cli(args: list[str]) -> int:
     """Runs the ``deltasph`` command line with ``args``; returns its exit code."""
+
+def case_schema() -> str:
+    """The JSON Schema of the case file (what ``sph-cli schema`` prints)."""

@@ -182,7 +182,9 @@ impl PySimulation {
             }
             folder.drive(py, s, options, report)
         });
-        self.pressure_fresh = true;
+        // a run that ends normally or on Ctrl-C syncs the pressure as it closes; after
+        // a blow-up or a failed write it may be stale
+        self.pressure_fresh = outcome.is_ok();
         outcome
     }
 

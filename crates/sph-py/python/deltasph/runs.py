@@ -59,6 +59,7 @@ class RunFolder:
                 f"sph-cli run and Simulation.run(out=...) write)")
         self.files, self.times = _index(index)
         self._series = None
+        self._spacing = None
 
     def __len__(self):
         return len(self.files)
@@ -69,8 +70,9 @@ class RunFolder:
 
     def snapshot(self, index):
         """The snapshot at position ``index`` of the index (negative from the end)."""
-        spacing = self.case.get("particles", {}).get("spacing")
-        return Snapshot(self.path / self.files[index], spacing)
+        if self._spacing is None and (self.path / "case.toml").is_file():
+            self._spacing = self.case.get("particles", {}).get("spacing")
+        return Snapshot(self.path / self.files[index], self._spacing)
 
     __getitem__ = snapshot
 

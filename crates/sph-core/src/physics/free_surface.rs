@@ -18,7 +18,7 @@ use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::kernel::Kernel;
-use crate::physics::renormalisation::guarded_inverse;
+use crate::physics::renormalisation::{add_moment, guarded_inverse, symmetrise};
 use nalgebra::{Matrix3, SMatrix};
 use rayon::prelude::*;
 
@@ -70,11 +70,18 @@ impl<const D: usize> Moments<D> {
         }
     }
 
-    /// Adds neighbour j at `x_ji = x_j - x_i` with `∇_i W_ij V_j = grad_w`.
+    /// Adds neighbour j at `x_ji = x_j - x_i` with `∇_i W_ij V_j = -x_ji f`,
+    /// `f = W'(r)/r V_j` (only the upper triangle of `B_i`, see [`Moments::symmetrised`]).
     #[inline(always)]
-    pub fn add(&mut self, x_ji: &Vector<D>, grad_w: &Vector<D>) {
-        self.b += x_ji * grad_w.transpose();
-        self.grad_gamma += grad_w;
+    pub fn add_radial(&mut self, x_ji: &Vector<D>, f: f64) {
+        add_moment(&mut self.b, x_ji, f);
+        self.grad_gamma -= x_ji * f;
+    }
+
+    /// The sums with the lower triangle of `B_i` filled from the upper one.
+    pub fn symmetrised(mut self) -> Self {
+        symmetrise(&mut self.b);
+        self
     }
 }
 
@@ -97,12 +104,9 @@ pub fn detect<const D: usize, K: Kernel>(
             for j in list.of(i) {
                 // ∇_i W_ij = x_ij W'(r)/r = -x_ji W'(r)/r, zero beyond the support
                 let x_ji = domain.separation(&particles.x[j], &xi);
-                m.add(
-                    &x_ji,
-                    &(-x_ji * (kernel.dw_over_r(x_ji.norm()) * volume[j])),
-                );
+                m.add_radial(&x_ji, kernel.dw_over_r(x_ji.norm()) * volume[j]);
             }
-            m
+            m.symmetrised()
         })
         .collect();
     classify(kernel, particles, list, domain, &moments)

@@ -53,6 +53,27 @@ pub fn guarded_inverse<const D: usize>(b: &SMatrix<f64, D, D>) -> SMatrix<f64, D
     inv / det
 }
 
+/// Adds neighbour j's share `-f x_ji ⊗ x_ji` of `B_i = Σ_j (x_j - x_i) ⊗ ∇_i W_ij V_j`,
+/// where `∇_i W_ij V_j = -x_ji f` (`f = W'(r)/r V_j`), to the upper triangle of `b`;
+/// [`symmetrise`] fills the lower one once the sum is complete.
+#[inline(always)]
+pub fn add_moment<const D: usize>(b: &mut SMatrix<f64, D, D>, x_ji: &Vector<D>, f: f64) {
+    for c in 0..D {
+        for r in 0..=c {
+            b[(r, c)] -= f * x_ji[r] * x_ji[c];
+        }
+    }
+}
+
+/// Copies the upper triangle of `b` into its lower one.
+pub fn symmetrise<const D: usize>(b: &mut SMatrix<f64, D, D>) {
+    for c in 0..D {
+        for r in c + 1..D {
+            b[(r, c)] = b[(c, r)];
+        }
+    }
+}
+
 /// Fills `grad` with ⟨∇ρ⟩^L for every fluid particle (zero for walls); `volume[j]` is
 /// `m_j/ρ_j`.
 pub fn density_gradient<const D: usize, K: Kernel>(
@@ -69,19 +90,22 @@ pub fn density_gradient<const D: usize, K: Kernel>(
         if particles.kind[i] != Kind::Fluid {
             return;
         }
-        let xi = particles.x[i];
-        let rho_i = particles.rho[i];
+        let (xi, rho_i) = (particles.x[i], particles.rho[i]);
         let mut b = SMatrix::<f64, D, D>::zeros();
         let mut sum = Vector::<D>::zeros();
-        for j in list.of(i) {
-            let x_ij = domain.separation(&xi, &particles.x[j]);
-            let f = kernel.dw_over_r(x_ij.norm());
-            let vj = volume[j];
-            let grad_w = x_ij * (f * vj);
-            // (x_j - x_i) ⊗ ∇W V_j = -x_ij ⊗ ∇W V_j
-            b -= x_ij * grad_w.transpose();
-            sum += grad_w * (particles.rho[j] - rho_i);
+        let mut add = |j: usize| {
+            let x_ji = domain.separation(&particles.x[j], &xi);
+            let f = kernel.dw_over_r(x_ji.norm()) * volume[j];
+            add_moment(&mut b, &x_ji, f);
+            sum -= x_ji * (f * (particles.rho[j] - rho_i));
+        };
+        for &j in list.fluid(i) {
+            add(j as usize);
         }
+        for &j in list.walls(i) {
+            add(j as usize);
+        }
+        symmetrise(&mut b);
         *g = guarded_inverse(&b) * sum;
     });
 }

@@ -22,6 +22,7 @@ use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::free_surface::{self, FreeSurface, Moments};
 use crate::physics::kernel::Kernel;
+use crate::physics::renormalisation::guarded_inverse;
 use rayon::prelude::*;
 
 /// `R` of the anti-clustering term.
@@ -38,43 +39,47 @@ pub struct Shift<const D: usize> {
     pub surface: FreeSurface<D>,
 }
 
-/// The displacements of one shift with `cfl_ma = U_max Δt / h`. A single pass over the
-/// neighbours gathers the shifting sum and the free-surface [`Moments`] together.
+/// How strongly one shift acts: the lattice spacing Δx of the anti-clustering term and
+/// `cfl_ma = CFL·Ma = U_max Δt / h`.
+#[derive(Debug, Clone, Copy)]
+pub struct Strength {
+    pub dx: f64,
+    pub cfl_ma: f64,
+}
+
+/// The displacements of one shift, `volume[j] = m_j/ρ_j`.
+/// A single pass over the neighbours gathers the shifting sum and the free-surface
+/// [`Moments`] together.
+///
+/// With `gradient`, the same pass also fills it with the renormalised density gradient
+/// `⟨∇ρ⟩^L_i = B_i⁻¹ Σ_j (ρ_j - ρ_i) ∇_i W_ij V_j` of
+/// [`crate::physics::renormalisation`] (whose `B_i` is the free surface's), at the state
+/// before the shift: δ-SPH's diffusion then needs no pass of its own in the step's first
+/// evaluation. The shift moves particles by at most 0.05 h and leaves densities as they
+/// are, so the gradient it carries differs from the one at the shifted positions by
+/// `O(|δr_i| ∇∇ρ)`, less than the frozen diffusion's lag over the step.
 pub fn shift<const D: usize, K: Kernel>(
     kernel: &K,
-    dx: f64,
+    strength: Strength,
     particles: &Particles<D>,
+    volume: &[f64],
     list: &NeighbourList<D>,
     domain: &Domain<D>,
-    cfl_ma: f64,
+    gradient: Option<&mut Vec<Vector<D>>>,
 ) -> Shift<D> {
-    let inv_w_dx = 1.0 / kernel.w(dx);
-    let volume = particles.volumes();
-    let (sums, moments): (Vec<Vector<D>>, Vec<Moments<D>>) = (0..particles.len())
-        .into_par_iter()
-        .map(|i| {
-            let (mut sum, mut m) = (Vector::<D>::zeros(), Moments::zero());
-            if particles.kind[i] != Kind::Fluid {
-                return (sum, m);
-            }
-            let xi = particles.x[i];
-            let mut add = |j: &u32| {
-                let j = *j as usize;
-                let x_ij = domain.separation(&xi, &particles.x[j]);
-                let r = x_ij.norm();
-                let w = kernel.w(r) * inv_w_dx;
-                let grad_w = x_ij * (kernel.dw_over_r(r) * volume[j]);
-                // beyond the support both vanish, and so does the pair's share
-                m.add(&-x_ij, &grad_w);
-                sum += grad_w * (1.0 + ANTI_CLUSTERING * (w * w) * (w * w));
-            };
-            list.fluid(i).iter().for_each(&mut add);
-            list.walls(i).iter().for_each(&mut add);
-            (sum, m)
-        })
-        .unzip();
+    let inv_w_dx = 1.0 / kernel.w(strength.dx);
+    let sums = match gradient {
+        Some(grad) => {
+            let sums = gather_all::<D, K, true>(kernel, inv_w_dx, particles, volume, list, domain);
+            grad.clear();
+            grad.par_extend(sums.par_iter().map(|g| g.density_gradient()));
+            sums
+        }
+        None => gather_all::<D, K, false>(kernel, inv_w_dx, particles, volume, list, domain),
+    };
+    let moments: Vec<Moments<D>> = sums.par_iter().map(|g| g.moments).collect();
     let surface = free_surface::classify(kernel, particles, list, domain, &moments);
-    let scale = cfl_ma * (2.0 * kernel.h()).powi(2);
+    let scale = strength.cfl_ma * (2.0 * kernel.h()).powi(2);
     let cap = CAP * kernel.h();
     let dr = (0..particles.len())
         .into_par_iter()
@@ -82,7 +87,7 @@ pub fn shift<const D: usize, K: Kernel>(
             if particles.kind[i] != Kind::Fluid || surface.lambda[i] < SPLASH_LAMBDA {
                 return Vector::zeros();
             }
-            let mut dr = -sums[i] * scale;
+            let mut dr = -sums[i].shifting * scale;
             if surface.near[i] {
                 let n = surface.normal[i];
                 dr -= n * n.dot(&dr);
@@ -95,4 +100,79 @@ pub fn shift<const D: usize, K: Kernel>(
         })
         .collect();
     Shift { dr, surface }
+}
+
+/// One fluid particle's neighbour sums: the shifting sum
+/// `Σ_j [1 + R (W_ij/W(Δx))⁴] ∇_i W_ij V_j`, the free-surface [`Moments`] and, when
+/// gathered, `Σ_j (ρ_j - ρ_i) ∇_i W_ij V_j` (zero for walls).
+#[derive(Clone, Copy)]
+struct Gathered<const D: usize> {
+    shifting: Vector<D>,
+    moments: Moments<D>,
+    density: Vector<D>,
+}
+
+impl<const D: usize> Gathered<D> {
+    fn density_gradient(&self) -> Vector<D> {
+        guarded_inverse(&self.moments.b) * self.density
+    }
+}
+
+/// The [`Gathered`] sums of every particle; the density sum only when `GRAD`.
+fn gather_all<const D: usize, K: Kernel, const GRAD: bool>(
+    kernel: &K,
+    inv_w_dx: f64,
+    particles: &Particles<D>,
+    volume: &[f64],
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+) -> Vec<Gathered<D>> {
+    (0..particles.len())
+        .into_par_iter()
+        .map(|i| gather::<D, K, GRAD>(kernel, inv_w_dx, i, particles, volume, list, domain))
+        .collect()
+}
+
+/// The [`Gathered`] sums of particle i over its fluid neighbours and then its walls
+/// (beyond the support every share vanishes).
+#[inline(always)]
+fn gather<const D: usize, K: Kernel, const GRAD: bool>(
+    kernel: &K,
+    inv_w_dx: f64,
+    i: usize,
+    particles: &Particles<D>,
+    volume: &[f64],
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+) -> Gathered<D> {
+    let mut g = Gathered {
+        shifting: Vector::zeros(),
+        moments: Moments::zero(),
+        density: Vector::zeros(),
+    };
+    if particles.kind[i] != Kind::Fluid {
+        return g;
+    }
+    let (xi, rho_i) = (particles.x[i], particles.rho[i]);
+    let mut add = |j: usize| {
+        let x_ji = domain.separation(&particles.x[j], &xi);
+        let r = x_ji.norm();
+        let w = kernel.w(r) * inv_w_dx;
+        // ∇_i W_ij V_j = x_ij W'(r)/r V_j = -x_ji f
+        let f = kernel.dw_over_r(r) * volume[j];
+        g.moments.add_radial(&x_ji, f);
+        let grad_w = x_ji * -f;
+        g.shifting += grad_w * (1.0 + ANTI_CLUSTERING * (w * w) * (w * w));
+        if GRAD {
+            g.density += grad_w * (particles.rho[j] - rho_i);
+        }
+    };
+    for &j in list.fluid(i) {
+        add(j as usize);
+    }
+    for &j in list.walls(i) {
+        add(j as usize);
+    }
+    g.moments = g.moments.symmetrised();
+    g
 }

@@ -85,7 +85,8 @@ pub struct Physics<const D: usize> {
 /// What the integrators and diagnostics need from a resolved scheme.
 pub trait Model<const D: usize>: Send + Sync {
     /// Fills `rates` at the current state: pressure from the EOS, wall extrapolation,
-    /// the δ-SPH gradient pre-pass (only if the diffusion needs it and `with_diffusion`),
+    /// the δ-SPH gradient pre-pass (only if the diffusion needs it, `with_diffusion`, and
+    /// the [`Model::shift`] just before did not compute the gradient),
     /// then the pair loop. `rates.drho_diff` is written only when `with_diffusion`, and
     /// so are the powers of the energy budget when the scheme carries one.
     fn evaluate(
@@ -115,10 +116,12 @@ pub trait Model<const D: usize>: Send + Sync {
     /// `None` to switch it off.
     fn set_tensile_control(&mut self, interior: Option<Vec<bool>>);
     /// δ+-SPH shifting displacements and the free surface at the current state (see
-    /// [`crate::physics::shifting`]), `cfl_ma = U_max Δt/h`.
+    /// [`crate::physics::shifting`]), `cfl_ma = U_max Δt/h`. When the diffusion needs
+    /// δ-SPH's density gradient, the same pass computes it (pressures and walls refreshed
+    /// first), and the next evaluation uses it instead of a pre-pass of its own.
     fn shift(
-        &self,
-        particles: &Particles<D>,
+        &mut self,
+        particles: &mut Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
         dx: f64,
@@ -164,6 +167,8 @@ pub struct Scheme<const D: usize, K, Df, V> {
     volume: Vec<f64>,
     /// ⟨∇ρ⟩^L, allocated only when the diffusion needs it.
     grad: Vec<Vector<D>>,
+    /// Whether `grad` was computed by the last shift, for the evaluation that follows it.
+    grad_from_shift: bool,
     /// Tensile instability control (Sun et al. 2018): per particle, whether it is inside
     /// the fluid (not on or near the free surface); `None` when the control is off.
     interior: Option<Vec<bool>>,
@@ -216,6 +221,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             eta2: 0.01 * h * h,
             volume: Vec::new(),
             grad: Vec::new(),
+            grad_from_shift: false,
             interior: None,
             budget,
             powers: None,
@@ -514,7 +520,8 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
     ) {
         rates.resize(particles.len());
         self.prepare(particles, list, domain);
-        if with_diffusion && Df::NEEDS_GRADIENT {
+        let grad_from_shift = std::mem::take(&mut self.grad_from_shift);
+        if with_diffusion && Df::NEEDS_GRADIENT && !grad_from_shift {
             let mut grad = std::mem::take(&mut self.grad);
             density_gradient(
                 &self.kernel,
@@ -563,14 +570,39 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
     }
 
     fn shift(
-        &self,
-        particles: &Particles<D>,
+        &mut self,
+        particles: &mut Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
         dx: f64,
         cfl_ma: f64,
     ) -> Shift<D> {
-        shifting::shift(&self.kernel, dx, particles, list, domain, cfl_ma)
+        let strength = shifting::Strength { dx, cfl_ma };
+        if !Df::NEEDS_GRADIENT {
+            let volume = particles.volumes();
+            return shifting::shift(
+                &self.kernel,
+                strength,
+                particles,
+                &volume,
+                list,
+                domain,
+                None,
+            );
+        }
+        self.prepare(particles, list, domain);
+        let mut grad = std::mem::take(&mut self.grad);
+        let shift = shifting::shift(
+            &self.kernel,
+            strength,
+            particles,
+            &self.volume,
+            list,
+            domain,
+            Some(&mut grad),
+        );
+        (self.grad, self.grad_from_shift) = (grad, true);
+        shift
     }
 
     fn last_powers(&self) -> Option<Powers> {

@@ -291,7 +291,7 @@ impl<const D: usize> Simulation<D> {
         let dt = self.dt;
         let cfl_ma = speed * dt / self.case.h();
         let shift = self.model.shift(
-            &self.particles,
+            &mut self.particles,
             &self.list,
             &self.domain,
             self.case.dx(),

@@ -8,6 +8,10 @@ Parts (run one with its name, or all by default):
   variants  the cost of a step of each scheme at 20k particles, 2 threads, relative to
             δ-SPH: plain WCSPH, δ-SPH with the energy budget, δ+-SPH, δ+-SPH with tensile
             control; at h/Δx = 1.33 and 2 (the default).
+  interleaved
+            the same step costs as `variants`, measured in one process (the deltasph
+            Python module): the schemes' simulations advance in turns, 10 steps each, so
+            that the machine's slow spells fall on all of them alike.
   solution  wall time of examples/dam_break_2d.toml as it stands (output on), and of
             the same case with the symplectic scheme at CFL 0.25 (its default); with --baseline BIN
             the baseline's time too, alternated.
@@ -135,23 +139,55 @@ def variants(args):
 
 
 def variants_at(args, h_dx):
+    cases = variant_cases(h_dx, args.steps)
+    res = median_runs([(label, text, CLI) for label, text in cases], args.repeat)
+    ref = res["δ-SPH"][0] / res["δ-SPH"][1]["steps"]
+    for label, (wall, r) in res.items():
+        per_step = wall / r["steps"]
+        print(f"  {label:<26} {1e3 * per_step:7.2f} ms/step  ×{per_step / ref:.2f}")
+
+
+def variant_cases(h_dx, steps):
+    """The variants of `variants`, as (label, case text)."""
     n = 20_000
 
     def case(**scheme):
-        return case_2d(n, args.steps, h_over_dx=h_dx, **scheme)
+        return case_2d(n, steps, h_over_dx=h_dx, **scheme)
 
-    cases = [
+    return [
         ("δ-SPH", case()),
         ("plain WCSPH", case(diffusion='"none"')),
         ("δ-SPH + energy budget", set_key(case(), "energy_budget", "true", "diagnostics")),
         ("δ+-SPH", case(shifting='"delta_plus"')),
         ("δ+-SPH + tensile control", case(shifting='"delta_plus"', tensile_control="true")),
     ]
-    res = median_runs([(label, text, CLI) for label, text in cases], args.repeat)
-    ref = res["δ-SPH"][0] / res["δ-SPH"][1]["steps"]
-    for label, (wall, r) in res.items():
-        per_step = wall / r["steps"]
-        print(f"  {label:<26} {1e3 * per_step:7.2f} ms/step  ×{per_step / ref:.2f}")
+
+
+def interleaved(args):
+    import time
+    import deltasph as ds
+
+    os.environ.setdefault("RAYON_NUM_THREADS", "2")
+    block = 10
+    for h_dx in (1.33, 2.0):
+        print(f"cost of a step relative to δ-SPH (RK4), about 20k fluid particles, "
+              f"{os.environ['RAYON_NUM_THREADS']} threads, h/Δx = {h_dx}, interleaved")
+        sims = []
+        for label, text in variant_cases(h_dx, None):
+            with tempfile.TemporaryDirectory() as tmp:
+                case = Path(tmp) / "case.toml"
+                case.write_text(text)
+                sims.append((label, ds.Simulation.from_toml(case)))
+        spent = {label: 0.0 for label, _ in sims}
+        for _ in range(args.steps // block):
+            for label, sim in sims:
+                start = time.perf_counter()
+                sim.step(block)
+                spent[label] += time.perf_counter() - start
+        ref = spent["δ-SPH"]
+        for label, _ in sims:
+            per_step = spent[label] / (args.steps // block * block)
+            print(f"  {label:<26} {1e3 * per_step:7.2f} ms/step  ×{spent[label] / ref:.2f}")
 
 
 def solution(args):
@@ -183,7 +219,8 @@ def scaling(args):
 
 
 def main():
-    parts = {"evals": evals, "variants": variants, "solution": solution, "scaling": scaling}
+    parts = {"evals": evals, "variants": variants, "interleaved": interleaved,
+             "solution": solution, "scaling": scaling}
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("parts", nargs="*", help=" ".join(parts))
     ap.add_argument("--steps", type=int, default=200, help="steps of the fixed-step runs")

@@ -1,10 +1,12 @@
 """The case file's JSON Schema (docs/case.schema.json, printed by `sph-cli schema`;
 crates/sph-cli/tests/end_to_end/cli.rs checks that the two agree): every example case conforms, an
 unknown or misspelt key is flagged as an editor would flag it, and the README's
-case-file reference names exactly the keys of the schema."""
+case-file reference is the one scripts/case_reference.py generates from the schema, naming
+exactly its keys."""
 
 import json
 import re
+import sys
 
 import jsonschema
 import pytest
@@ -76,6 +78,15 @@ def readme_keys():
             key = re.split(r"\s*=", cell)[0].strip()
             found.add(f"{table}.{key}" if table else key)
     return found
+
+
+def test_the_readme_reference_is_generated_from_the_schema():
+    sys.path.insert(0, str(ROOT / "scripts"))
+    import case_reference
+
+    readme = (ROOT / "README.md").read_text()
+    assert case_reference.with_reference(readme) == readme, (
+        "the README's case-file reference is not current: run python3 scripts/case_reference.py")
 
 
 def test_the_readme_reference_names_the_schema_keys():

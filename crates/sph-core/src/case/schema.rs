@@ -18,10 +18,13 @@ pub struct Case {
     pub dimension: usize,
     pub particles: ParticlesConfig,
     pub fluid: FluidConfig,
+    /// Boxes filled with fluid.
     #[serde(default)]
     pub fluid_block: Vec<BoxConfig>,
+    /// Tanks: wall layers around a box.
     #[serde(default)]
     pub tank: Vec<TankConfig>,
+    /// Boxes filled with wall particles.
     #[serde(default)]
     pub wall: Vec<BoxConfig>,
     /// Solids of any shape: fluid regions, walls and cuts ([`super::shapes`]).
@@ -51,12 +54,13 @@ fn default_name() -> String {
 pub struct ParticlesConfig {
     /// Initial particle spacing Δx [m].
     pub spacing: f64,
-    /// Smoothing length over spacing, h/Δx. The default, 2 with Wendland C2 (support
-    /// 4Δx, as in the δ-SPH papers), has the lowest error at equal wall time across the
-    /// kernel study (docs/validation/kernel_study.md): at 1.33 the viscous profiles are
-    /// 3-12% off at any Δx and a standing wave's period 4% short.
+    /// Smoothing length over spacing, h/Δx, in [1, 3]. The default, 2 with Wendland C2
+    /// (support 4Δx, as in the δ-SPH papers), has the lowest error at equal wall time
+    /// across the kernel study (docs/validation/kernel_study.md): at 1.33 the viscous
+    /// profiles are 3-12% off at any Δx and a standing wave's period 4% short.
     #[serde(default = "default_h_over_dx")]
     pub h_over_dx: f64,
+    /// The smoothing kernel.
     #[serde(default = "default_kernel")]
     pub kernel: KernelChoice,
 }
@@ -73,18 +77,20 @@ fn default_kernel() -> KernelChoice {
 pub struct FluidConfig {
     /// Reference density ρ0 [kg/m³].
     pub density: f64,
-    /// Gravity vector [m/s²]; zero if absent.
+    /// Gravity vector [m/s²]. Default: zero.
     #[serde(default)]
     pub gravity: Option<Vec<f64>>,
-    /// Numerical sound speed c0 [m/s]; from the rule `factor · max(U, sqrt(Δp/ρ0))` if absent.
+    /// Numerical sound speed c0 [m/s]. Default: the rule of `sound_speed_factor`.
     #[serde(default)]
     pub sound_speed: Option<f64>,
+    /// The factor of the sound-speed rule `c0 = factor · max(U, sqrt(Δp/ρ0))`, with U
+    /// the `max_velocity` and `Δp = ρ0 |g| H`, H the fluid height.
     #[serde(default = "default_sound_speed_factor")]
     pub sound_speed_factor: f64,
     /// Background pressure p_b [Pa] added to the EOS (confined flows only).
     #[serde(default)]
     pub background_pressure: f64,
-    /// U_max for the sound-speed rule; default `max(|u0|, sqrt(2 |g| H))`, H the fluid height.
+    /// U of the sound-speed rule [m/s]. Default: `max(|u0|, sqrt(2 |g| H))`.
     #[serde(default)]
     pub max_velocity: Option<f64>,
 }
@@ -97,25 +103,29 @@ fn default_sound_speed_factor() -> f64 {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BoxConfig {
+    /// Lower corner [m]. Fluid blocks share the tanks' lattice when it is a multiple of
+    /// Δx; a wall is at least R thick along every axis.
     pub lo: Vec<f64>,
+    /// Upper corner [m].
     pub hi: Vec<f64>,
-    /// Initial velocity (fluid blocks only).
+    /// Initial velocity [m/s] (fluid blocks only). Default: at rest.
     #[serde(default)]
     pub velocity: Option<Vec<f64>>,
-    /// Start from the hydrostatic density of a column whose free surface is the box top
-    /// (fluid blocks only; default true).
+    /// Start from the hydrostatic density of a column whose free surface is the box top,
+    /// or `surface` (fluid blocks only). Default: true.
     #[serde(default)]
     pub hydrostatic: Option<bool>,
     /// Height (along -g) of the free surface above this block's hydrostatic start, when
     /// it is not the block's own top: blocks stacked around a submerged wall share the
-    /// surface of the top one (fluid blocks only).
+    /// surface of the top one (fluid blocks only; a submerged block then carries ρ0gV
+    /// within 0.13%, `tests/physics/loads.rs`). Default: the box top.
     #[serde(default)]
     pub surface: Option<f64>,
     /// Fill the whole box, or only the ellipse (ellipsoid) inscribed in it (fluid
-    /// blocks only; default box).
+    /// blocks only). Default: box.
     #[serde(default)]
     pub shape: Option<Shape>,
-    /// Name of the body in the loads' columns (walls only; default `wall<k>`).
+    /// Name of the body in the loads' columns (walls only). Default: `wall<k>`.
     #[serde(default)]
     pub name: Option<String>,
 }
@@ -123,6 +133,7 @@ pub struct BoxConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Shape {
+    /// The whole box.
     Box,
     /// The ellipse (3D: ellipsoid) inscribed in the box: a disc when the box is square.
     Ellipsoid,
@@ -132,22 +143,25 @@ pub enum Shape {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TankConfig {
+    /// Lower corner of the inner box [m].
     pub lo: Vec<f64>,
+    /// Upper corner of the inner box [m].
     pub hi: Vec<f64>,
-    /// Number of wall particle layers; default the fewest that cover the kernel
-    /// support, `ceil(R/Δx)`.
+    /// Number of wall particle layers; fewer than cover the kernel support
+    /// (layers·Δx < R) are refused. Default: the fewest that cover it, `ceil(R/Δx)` (4
+    /// at h/Δx = 2).
     #[serde(default)]
     pub layers: Option<usize>,
-    /// Faces left open, among "-x", "+x", "-y", "+y", "-z", "+z"; default the top face.
+    /// Faces left open, among "-x", "+x", "-y", "+y", "-z", "+z". Default: the top face.
     #[serde(default)]
     pub open: Option<Vec<String>>,
     /// Velocity of the wall layers above the top face (the last axis): a lid sliding in
     /// its own plane, as in the lid-driven cavity. Its particles keep their places and
     /// carry this velocity into the continuity and (no-slip) viscous terms. The top face
-    /// must be closed and the velocity tangential to it.
+    /// must be closed and the velocity tangential to it. Default: at rest.
     #[serde(default)]
     pub lid_velocity: Option<Vec<f64>>,
-    /// Name of the body in the loads' columns (default `tank<k>`).
+    /// Name of the body in the loads' columns. Default: `tank<k>`.
     #[serde(default)]
     pub name: Option<String>,
 }
@@ -169,9 +183,12 @@ impl TankConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DomainConfig {
+    /// Lower corner [m].
     pub lo: Vec<f64>,
+    /// Upper corner [m].
     pub hi: Vec<f64>,
-    /// Periodic flag per axis; default none.
+    /// Periodic flag per axis; a periodic axis needs the tanks' faces across it open.
+    /// Default: none periodic.
     #[serde(default)]
     pub periodic: Option<Vec<bool>>,
 }
@@ -189,15 +206,18 @@ impl DomainConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum InitialField {
-    /// 2D Taylor-Green vortex on a periodic square of side `wavelength`:
+    /// 2D Taylor-Green vortex on a periodic square of side `wavelength` (which must
+    /// divide the periodic box):
     /// `u = U(-cos kx sin ky, sin kx cos ky)`, `p = -ρ0 U²/4 (cos 2kx + cos 2ky)`, `k = 2π/L`.
     TaylorGreen { amplitude: f64, wavelength: f64 },
     /// 2D elliptic drop (Monaghan 1994) of a disc of `radius` R centred at the origin:
-    /// `u = (-A0 x, A0 y)` with `A0 = strain_rate`, `p = ρ0 A0² (R² - x² - y²)/2`.
+    /// `u = (-A0 x, A0 y)` with `A0 = strain_rate`, `p = ρ0 A0² (R² - x² - y²)/2`;
+    /// `radius` must be that of the fluid disc.
     EllipticDrop { strain_rate: f64, radius: f64 },
     /// 2D rotating square patch (Colagrossi 2005; Sun et al. 2017) of `side` L centred at
     /// the origin: `u = (ω y, -ω x)` with `ω = angular_velocity`, and the pressure that
-    /// solves ∇²p = 2ρ0ω² with p = 0 on the edges (series in [`crate::geometry`]).
+    /// solves ∇²p = 2ρ0ω² with p = 0 on the edges (a series); `side` must be that of the
+    /// fluid square.
     RotatingSquare { angular_velocity: f64, side: f64 },
     /// 2D linear standing wave, first sloshing mode of a tank `[0, length] × [0, depth]`
     /// (bottom y = 0), at the instant its surface is flat and its speed greatest:
@@ -208,10 +228,12 @@ pub enum InitialField {
         length: f64,
         depth: f64,
     },
-    /// Fields from expressions of the position (`x`, `y`, `z`), the named `constants`,
-    /// `rho0` and `g` (|gravity|): the velocity components `u` and the pressure `p` or
-    /// the density `rho`; what is not given stays as the fluid regions set it
-    /// ([`crate::geometry`]).
+    /// Fields from expressions of the position (`x`, `y`, `z`), the named `constants` (a
+    /// table), `rho0` and `g` (|gravity|), parsed by exmex in floating point (`1/2` is
+    /// 0.5): `u` a list of one expression per component, and the pressure `p` or the
+    /// density `rho`; what is not given stays as the fluid regions set it. An unknown
+    /// variable, a parse error or a value that is not finite at a particle is refused in
+    /// one line naming the key (and the particle).
     Expressions {
         #[serde(default)]
         constants: Option<std::collections::BTreeMap<String, f64>>,
@@ -227,17 +249,24 @@ pub enum InitialField {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum DiffusionChoice {
+    /// No density diffusion (standard WCSPH).
     None,
+    /// Molteni & Colagrossi (2009).
     MolteniColagrossi,
+    /// Ferrari et al. (2009).
     Ferrari,
+    /// δ-SPH (Antuono et al. 2010), with the renormalised density gradient.
     DeltaSph,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ViscosityChoice {
+    /// No viscous term.
     None,
+    /// Monaghan's artificial viscosity `K = α h c0 ρ0`, with `alpha`.
     Artificial,
+    /// Physical viscosity, with `dynamic_viscosity`.
     Physical,
 }
 
@@ -253,44 +282,52 @@ pub enum IntegratorChoice {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum WallCondition {
+    /// The walls exert no shear.
     FreeSlip,
+    /// The viscous term sees the walls' velocity mirrored (Adami et al. 2012).
     NoSlip,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SchemeConfig {
+    /// The density diffusion of the continuity equation.
     #[serde(default = "default_diffusion")]
     pub diffusion: DiffusionChoice,
     /// δ of the diffusive term.
     #[serde(default = "default_delta")]
     pub delta: f64,
+    /// The viscous term.
     #[serde(default = "default_viscosity")]
     pub viscosity: ViscosityChoice,
-    /// α of the artificial viscosity.
+    /// α of the artificial viscosity `K = α h c0 ρ0`. Default: 0.02.
     #[serde(default)]
     pub alpha: Option<f64>,
-    /// Dynamic viscosity μ [Pa s] of the physical viscosity.
+    /// Dynamic viscosity μ [Pa s] of the physical viscosity. Default: required with
+    /// `physical`.
     #[serde(default)]
     pub dynamic_viscosity: Option<f64>,
+    /// The time integrator.
     #[serde(default = "default_integrator")]
     pub integrator: IntegratorChoice,
-    /// Courant number of `Δt = CFL h/c0`; default 1.5 (RK4) or 0.25 (symplectic).
+    /// Courant number of `Δt = CFL h/c0`. Default: 1.5 (rk4) or 0.25 (symplectic).
     #[serde(default)]
     pub cfl: Option<f64>,
-    /// Viscous limit `Δt <= C_ν h²/ν`; default 0.125 (RK4) or 0.09 (symplectic).
+    /// Viscous limit `Δt <= C_ν h²/ν`. Default: 0.125 (rk4) or 0.09 (symplectic).
     #[serde(default)]
     pub viscous_cfl: Option<f64>,
     /// Body-force limit `Δt <= C_f sqrt(h/|a|max)`.
     #[serde(default = "default_force_cfl")]
     pub force_cfl: f64,
+    /// The wall condition of the viscous term.
     #[serde(default = "default_walls")]
     pub walls: WallCondition,
-    /// Particle shifting after each step.
+    /// Particle shifting after each step; `delta_plus` writes `shifting_velocity`.
     #[serde(default = "default_shifting")]
     pub shifting: ShiftingChoice,
     /// Tensile instability control (Sun et al. 2018): `(p_j - p_i)` in the momentum
-    /// equation for interior particles with negative pressure.
+    /// equation for interior particles with negative pressure (momentum is then not
+    /// conserved exactly).
     #[serde(default)]
     pub tensile_control: bool,
 }
@@ -298,8 +335,10 @@ pub struct SchemeConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ShiftingChoice {
+    /// No shifting.
     None,
-    /// δ+-SPH shifting (Sun et al. 2017) with free-surface treatment.
+    /// δ+-SPH shifting (Sun et al. 2017), tangential near the free surface and capped
+    /// at 0.05h.
     DeltaPlus,
 }
 
@@ -381,7 +420,7 @@ pub struct TimeConfig {
     /// Interval between particle snapshots [s]; 0 writes only the first and last.
     #[serde(default)]
     pub output_interval: f64,
-    /// Optional cap on the number of steps.
+    /// Cap on the number of steps. Default: none.
     #[serde(default)]
     pub max_steps: Option<u64>,
 }
@@ -419,17 +458,21 @@ fn default_max_density_variation() -> f64 {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DiagnosticsConfig {
-    /// Interval of the time series (energies, probes, front) [s]; default output_interval/10.
+    /// Interval of the time series (energies, probes, front) [s]. Default:
+    /// output_interval/10, or a 200th of the run without snapshots.
     #[serde(default)]
     pub interval: Option<f64>,
-    /// Write E_k, E_p, E_c, their sum and max |Δρ/ρ0|.
+    /// Write the kinetic, potential and compressive energies E_k, E_p, E_c, their sum
+    /// and max |Δρ/ρ0|.
     #[serde(default)]
     pub energy: bool,
     /// Also integrate the viscous, diffusive and wall powers (SCHEME.md §10), computed in
     /// the first evaluation of each step.
     #[serde(default)]
     pub energy_budget: bool,
-    /// Pressure probes (Shepard interpolation from fluid particles).
+    /// Points of Shepard-interpolated pressure, inside the domain and not buried in a
+    /// wall: columns `probe<k>_pressure`, NaN while no fluid is within the kernel support
+    /// of the point.
     #[serde(default)]
     pub probes: Vec<Vec<f64>>,
     /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
@@ -439,19 +482,22 @@ pub struct DiagnosticsConfig {
     /// flag, the normal and λ with it.
     #[serde(default)]
     pub free_surface: bool,
-    /// Write each body's load (every tank and wall, see [`crate::boundary::bodies`]):
-    /// pressure and viscous force and the moment about `moment_point`.
+    /// Write each body's load (every tank, wall and wall shape): columns
+    /// `<name>_pressure_fx …`, `<name>_viscous_fx …`, `<name>_moment_z` (3D: `_moment_x
+    /// _y _z`) about `moment_point`. They are minus the wall terms of the fluid's momentum
+    /// equation, so the loads sum to Σ m_i (g - du_i/dt) to round-off.
     #[serde(default)]
     pub loads: bool,
-    /// The point moments are taken about; default the origin.
+    /// The point moments are taken about. Default: the origin.
     #[serde(default)]
     pub moment_point: Option<Vec<f64>>,
     /// Reference scales of the force coefficients: with `loads`, each body's total
-    /// force also as `C = F / (½ ρ U² A)`, `A = L` per unit width in 2D, `L²` in 3D.
+    /// force also as `<name>_cx …` = `F / (½ ρ U² A)`, `A = L` per unit width in 2D, `L²`
+    /// in 3D.
     #[serde(default)]
     pub reference: Option<ReferenceConfig>,
     /// Pressure sensors as built: faces on a wall, averaged over their area and
-    /// optionally low-pass filtered ([`crate::diagnostics::sensors`]).
+    /// optionally low-pass filtered.
     #[serde(default)]
     pub sensors: Vec<SensorConfig>,
 }
@@ -464,7 +510,7 @@ pub struct ReferenceConfig {
     pub velocity: f64,
     /// L [m].
     pub length: f64,
-    /// ρ [kg/m³]; default the fluid's ρ0.
+    /// ρ [kg/m³]. Default: the fluid's ρ0.
     #[serde(default)]
     pub density: Option<f64>,
 }
@@ -474,6 +520,10 @@ pub struct ReferenceConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SensorConfig {
+    /// Heads the sensor's columns: `<name>_pressure` (the probe pressure averaged over
+    /// the face, on points at most Δx/4 apart, 5-64 across; where the face is dry it
+    /// reads zero gauge pressure, as a transducer in air does) and `<name>_point` (the
+    /// value at its centre).
     pub name: String,
     /// Centre of the face, on the wall [m].
     pub centre: Vec<f64>,
@@ -482,8 +532,9 @@ pub struct SensorConfig {
     /// Size of the face [m]: the length of the segment (2D), the diameter of the disc
     /// (3D), across the normal.
     pub size: f64,
-    /// Cut-off frequency [Hz] of the second-order Butterworth low-pass filter run at
-    /// the series interval (below its Nyquist frequency); none by default.
+    /// Cut-off frequency [Hz] of a second-order Butterworth low-pass filter on the face
+    /// average, run at the series interval (below its Nyquist frequency): column
+    /// `<name>_filtered`; its state is kept in restart files. Default: none.
     #[serde(default)]
     pub cutoff: Option<f64>,
 }
@@ -492,8 +543,8 @@ pub struct SensorConfig {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputConfig {
-    /// Simulated-time interval between restart files [s]; none by default (a restart
-    /// file is still written at the end, on a stop signal and on a failed write).
+    /// Simulated-time interval between restart files [s]. Default: none (a restart file
+    /// is still written at the end, on a stop signal and on a failed write).
     #[serde(default)]
     pub restart_interval: Option<f64>,
 }

@@ -27,7 +27,9 @@ pub enum Role {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BallConfig {
+    /// Centre [m].
     pub centre: Vec<f64>,
+    /// Radius [m].
     pub radius: f64,
 }
 
@@ -35,8 +37,11 @@ pub struct BallConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CylinderConfig {
+    /// Centre of one end face [m].
     pub base: Vec<f64>,
+    /// Centre of the other end face [m].
     pub top: Vec<f64>,
+    /// Radius [m].
     pub radius: f64,
 }
 
@@ -44,7 +49,9 @@ pub struct CylinderConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CuboidConfig {
+    /// Lower corner [m].
     pub lo: Vec<f64>,
+    /// Upper corner [m].
     pub hi: Vec<f64>,
 }
 
@@ -53,9 +60,14 @@ pub struct CuboidConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShapeConfig {
+    /// What the shape is. Shapes use the lattice (k+½)Δx from the origin, so fluid and
+    /// wall particles share one lattice (fluid blocks share it when their `lo` is a
+    /// multiple of Δx).
     pub role: Role,
     /// 2D: the vertices of a closed polygon, `[[x, y], ...]`, in either winding; the
-    /// last vertex joins the first.
+    /// last vertex joins the first. Fewer than 3 distinct vertices, no area or crossing
+    /// edges are refused. A shape takes exactly one geometry key: `polygon`, `file`,
+    /// `circle`, `sphere`, `cylinder` or `box`.
     #[serde(default)]
     pub polygon: Option<Vec<Vec<f64>>>,
     /// A file: `.stl` (3D, ASCII or binary, closed and outward-facing), or (2D) a
@@ -75,23 +87,27 @@ pub struct ShapeConfig {
     /// Axis-aligned box (2D or 3D).
     #[serde(default, rename = "box")]
     pub cuboid: Option<CuboidConfig>,
-    /// Factor from the file's or polygon's units to metres (0.001 for millimetres);
-    /// default 1.
+    /// Factor from the file's or polygon's units to metres (0.001 for millimetres); a
+    /// shape 100× larger than the rest of the case is refused as a suspected unit
+    /// mismatch. Default: 1.
     #[serde(default)]
     pub scale: Option<f64>,
-    /// Name of the body in the loads' columns (walls only; default `shape<k>`).
+    /// Name of the body in the loads' columns (walls only). Default: `shape<k>`.
     #[serde(default)]
     pub name: Option<String>,
-    /// Wall layers (walls only): default the fewest that cover the kernel support.
+    /// Wall layers (walls only), at least enough to cover R; the solid must be at least
+    /// that thick. Default: the fewest that cover the kernel support.
     #[serde(default)]
     pub layers: Option<usize>,
-    /// Initial velocity (fluid only).
+    /// Initial velocity [m/s] (fluid only). Default: at rest.
     #[serde(default)]
     pub velocity: Option<Vec<f64>>,
-    /// Hydrostatic start from the shape's top, or from `surface` (fluid only; default true).
+    /// Hydrostatic start from the shape's top, or from `surface` (fluid only). Default:
+    /// true.
     #[serde(default)]
     pub hydrostatic: Option<bool>,
     /// Height (along -g) of the free surface of the hydrostatic start (fluid only).
+    /// Default: the shape's top.
     #[serde(default)]
     pub surface: Option<f64>,
 }

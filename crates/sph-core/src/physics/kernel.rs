@@ -40,10 +40,15 @@ pub trait Kernel: Copy + Send + Sync + 'static {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum KernelChoice {
+    /// Wendland C2, support 2h.
     WendlandC2,
+    /// Wendland C4, support 2h.
     WendlandC4,
+    /// Cubic B-spline, support 2h.
     CubicSpline,
+    /// Quintic B-spline, support 3h.
     QuinticSpline,
+    /// Gaussian truncated at 3h.
     Gaussian,
 }
 

@@ -93,17 +93,12 @@ pub fn density_gradient<const D: usize, K: Kernel>(
         let (xi, rho_i) = (particles.x[i], particles.rho[i]);
         let mut b = SMatrix::<f64, D, D>::zeros();
         let mut sum = Vector::<D>::zeros();
-        let mut add = |j: usize| {
+        for &j in list.fluid(i).iter().chain(list.walls(i)) {
+            let j = j as usize;
             let x_ji = domain.separation(&particles.x[j], &xi);
             let f = kernel.dw_over_r(x_ji.norm()) * volume[j];
             add_moment(&mut b, &x_ji, f);
             sum -= x_ji * (f * (particles.rho[j] - rho_i));
-        };
-        for &j in list.fluid(i) {
-            add(j as usize);
-        }
-        for &j in list.walls(i) {
-            add(j as usize);
         }
         symmetrise(&mut b);
         *g = guarded_inverse(&b) * sum;

@@ -113,6 +113,18 @@ struct Gathered<const D: usize> {
 }
 
 impl<const D: usize> Gathered<D> {
+    /// Adds neighbour j at `x_ji` with `f = W'(r)/r V_j`, `w = W_ij/W(Δx)` and
+    /// `drho = ρ_j - ρ_i`.
+    #[inline(always)]
+    fn add<const GRAD: bool>(&mut self, (x_ji, f, w, drho): (Vector<D>, f64, f64, f64)) {
+        self.moments.add_radial(&x_ji, f);
+        let grad_w = x_ji * -f;
+        self.shifting += grad_w * (1.0 + ANTI_CLUSTERING * (w * w) * (w * w));
+        if GRAD {
+            self.density += grad_w * drho;
+        }
+    }
+
     fn density_gradient(&self) -> Vector<D> {
         guarded_inverse(&self.moments.b) * self.density
     }
@@ -154,24 +166,17 @@ fn gather<const D: usize, K: Kernel, const GRAD: bool>(
         return g;
     }
     let (xi, rho_i) = (particles.x[i], particles.rho[i]);
-    let mut add = |j: usize| {
+    let pair = |j: u32| {
+        let j = j as usize;
         let x_ji = domain.separation(&particles.x[j], &xi);
         let r = x_ji.norm();
-        let w = kernel.w(r) * inv_w_dx;
         // ∇_i W_ij V_j = x_ij W'(r)/r V_j = -x_ji f
         let f = kernel.dw_over_r(r) * volume[j];
-        g.moments.add_radial(&x_ji, f);
-        let grad_w = x_ji * -f;
-        g.shifting += grad_w * (1.0 + ANTI_CLUSTERING * (w * w) * (w * w));
-        if GRAD {
-            g.density += grad_w * (particles.rho[j] - rho_i);
-        }
+        let drho = if GRAD { particles.rho[j] - rho_i } else { 0.0 };
+        (x_ji, f, kernel.w(r) * inv_w_dx, drho)
     };
-    for &j in list.fluid(i) {
-        add(j as usize);
-    }
-    for &j in list.walls(i) {
-        add(j as usize);
+    for &j in list.fluid(i).iter().chain(list.walls(i)) {
+        g.add::<GRAD>(pair(j));
     }
     g.moments = g.moments.symmetrised();
     g

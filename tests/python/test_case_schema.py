@@ -15,11 +15,6 @@ from conftest import EXAMPLES, ROOT, tomllib
 
 SCHEMA = json.loads((ROOT / "docs" / "case.schema.json").read_text())
 
-#: Keys the schema allows because `[[fluid_block]]` and `[[wall]]` share one table type,
-#: and that the case's validation refuses in one line (crates/sph-core/src/case/validate.rs).
-SHARED_BUT_REFUSED = {"wall.velocity", "wall.hydrostatic", "wall.surface", "wall.shape",
-                      "fluid_block.name"}
-
 
 def resolve(node):
     """A subschema with its $ref followed."""
@@ -60,7 +55,7 @@ def schema_keys():
                 found.update(f"{key}.{sub}.{k}" for k in keys_of(table_of(inner)))
             else:
                 found.add(f"{key}.{sub}")
-    return found - SHARED_BUT_REFUSED
+    return found
 
 
 def readme_keys():
@@ -123,4 +118,19 @@ def test_editors_flag_unknown_keys_and_wrong_values():
         jsonschema.validate(case, SCHEMA)
     del case["particles"]
     with pytest.raises(jsonschema.ValidationError, match="particles"):
+        jsonschema.validate(case, SCHEMA)
+
+
+def test_editors_flag_the_keys_of_the_other_box():
+    """Fluid blocks take no body name, and walls no initial fluid state."""
+    with open(EXAMPLES / "dam_break_2d.toml", "rb") as f:
+        case = tomllib.load(f)
+    block = case["fluid_block"][0]
+    jsonschema.validate(case, SCHEMA)
+    block["name"] = "water"
+    with pytest.raises(jsonschema.ValidationError, match="name"):
+        jsonschema.validate(case, SCHEMA)
+    del block["name"]
+    case["wall"] = [{"lo": [1.0, 0.0], "hi": [1.2, 0.2], "velocity": [1.0, 0.0]}]
+    with pytest.raises(jsonschema.ValidationError, match="velocity"):
         jsonschema.validate(case, SCHEMA)

@@ -20,13 +20,13 @@ pub struct Case {
     pub fluid: FluidConfig,
     /// Boxes filled with fluid.
     #[serde(default)]
-    pub fluid_block: Vec<BoxConfig>,
+    pub fluid_block: Vec<FluidBlockConfig>,
     /// Tanks: wall layers around a box.
     #[serde(default)]
     pub tank: Vec<TankConfig>,
     /// Boxes filled with wall particles.
     #[serde(default)]
-    pub wall: Vec<BoxConfig>,
+    pub wall: Vec<WallConfig>,
     /// Solids of any shape: fluid regions, walls and cuts ([`super::shapes`]).
     #[serde(default)]
     pub shape: Vec<ShapeConfig>,
@@ -99,33 +99,42 @@ fn default_sound_speed_factor() -> f64 {
     10.0
 }
 
-/// An axis-aligned box `[lo, hi]`, filled with particles on the lattice `lo + (k + ½)Δx`.
+/// A box `[lo, hi]` filled with fluid on the lattice `lo + (k + ½)Δx`.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct BoxConfig {
-    /// Lower corner [m]. Fluid blocks share the tanks' lattice when it is a multiple of
-    /// Δx; a wall is at least R thick along every axis.
+pub struct FluidBlockConfig {
+    /// Lower corner [m]. The block shares the tanks' lattice when it is a multiple of Δx.
     pub lo: Vec<f64>,
     /// Upper corner [m].
     pub hi: Vec<f64>,
-    /// Initial velocity [m/s] (fluid blocks only). Default: at rest.
+    /// Initial velocity [m/s]. Default: at rest.
     #[serde(default)]
     pub velocity: Option<Vec<f64>>,
     /// Start from the hydrostatic density of a column whose free surface is the box top,
-    /// or `surface` (fluid blocks only). Default: true.
+    /// or `surface`. Default: true.
     #[serde(default)]
     pub hydrostatic: Option<bool>,
     /// Height (along -g) of the free surface above this block's hydrostatic start, when
     /// it is not the block's own top: blocks stacked around a submerged wall share the
-    /// surface of the top one (fluid blocks only; a submerged block then carries ρ0gV
-    /// within 0.13%, `tests/physics/loads.rs`). Default: the box top.
+    /// surface of the top one (a submerged block then carries ρ0gV within 0.13%,
+    /// `tests/physics/loads.rs`). Default: the box top.
     #[serde(default)]
     pub surface: Option<f64>,
-    /// Fill the whole box, or only the ellipse (ellipsoid) inscribed in it (fluid
-    /// blocks only). Default: box.
+    /// Fill the whole box, or only the ellipse (ellipsoid) inscribed in it. Default: box.
     #[serde(default)]
     pub shape: Option<Shape>,
-    /// Name of the body in the loads' columns (walls only). Default: `wall<k>`.
+}
+
+/// A box `[lo, hi]` filled with wall particles on the lattice `lo + (k + ½)Δx`: a fixed
+/// body whose load can be written.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WallConfig {
+    /// Lower corner [m]. The wall is at least the kernel support R thick along every axis.
+    pub lo: Vec<f64>,
+    /// Upper corner [m].
+    pub hi: Vec<f64>,
+    /// Name of the body in the loads' columns. Default: `wall<k>`.
     #[serde(default)]
     pub name: Option<String>,
 }

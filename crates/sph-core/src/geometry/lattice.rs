@@ -3,7 +3,7 @@
 //! boxes.
 
 use super::vector;
-use crate::case::{BoxConfig, Case, Shape};
+use crate::case::{Case, FluidBlockConfig, Shape};
 use crate::particles::Vector;
 
 /// Lattice points `lo + (k + ½)Δx` filling `[lo, hi]`, with the count per axis rounded.
@@ -26,7 +26,7 @@ pub(super) fn lattice<const D: usize>(lo: &Vector<D>, hi: &Vector<D>, dx: f64) -
 
 /// The lattice points of a fluid block: the whole box, or those inside the inscribed
 /// ellipse (ellipsoid).
-pub(super) fn block_points<const D: usize>(b: &BoxConfig, dx: f64) -> Vec<Vector<D>> {
+pub(super) fn block_points<const D: usize>(b: &FluidBlockConfig, dx: f64) -> Vec<Vector<D>> {
     let (lo, hi): (Vector<D>, Vector<D>) = (vector(&b.lo), vector(&b.hi));
     let mut points = lattice(&lo, &hi, dx);
     if b.shape == Some(Shape::Ellipsoid) {

@@ -524,8 +524,9 @@ pub struct ReferenceConfig {
     pub density: Option<f64>,
 }
 
-/// A face sensor: columns `<name>_pressure` (the face average), `<name>_point` (the
-/// point value at its centre) and, with a cut-off, `<name>_filtered`.
+/// A face sensor (a segment in 2D, a disc or rectangle in 3D): columns
+/// `<name>_pressure` (the face average), `<name>_point` (the point value at its centre)
+/// and, with a cut-off, `<name>_filtered`.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SensorConfig {
@@ -539,8 +540,16 @@ pub struct SensorConfig {
     /// Normal of the face (either sense).
     pub normal: Vec<f64>,
     /// Size of the face [m]: the length of the segment (2D), the diameter of the disc
-    /// (3D), across the normal.
+    /// (3D), or the rectangle's side along `along` (3D, with `width`).
     pub size: f64,
+    /// 3D: makes the face a rectangle, `size` long along `along` and `width` [m] across
+    /// it. Default: a disc.
+    #[serde(default)]
+    pub width: Option<f64>,
+    /// 3D rectangles: the direction of their `size` side (projected into the face's
+    /// plane). Default: required with `width`.
+    #[serde(default)]
+    pub along: Option<Vec<f64>>,
     /// Cut-off frequency [Hz] of a second-order Butterworth low-pass filter on the face
     /// average, run at the series interval (below its Nyquist frequency): column
     /// `<name>_filtered`; its state is kept in restart files. Default: none.

@@ -267,6 +267,7 @@ impl Case {
             ));
         }
         positive(&key("size"), s.size)?;
+        self.check_rectangle(k, s)?;
         if let Some(f) = s.cutoff {
             let nyquist = 0.5 / self.series_interval();
             if !(f > 0.0 && f < nyquist) {
@@ -280,6 +281,55 @@ impl Case {
                     ),
                 ));
             }
+        }
+        Ok(())
+    }
+
+    /// A rectangular face (3D only) needs a positive width and a direction `along` for
+    /// its `size` side that is not the normal's.
+    fn check_rectangle(&self, k: usize, s: &SensorConfig) -> Result<()> {
+        let key = |what: &str| format!("diagnostics.sensors[{k}].{what}");
+        let (width, along) = match (s.width, &s.along) {
+            (None, None) => return Ok(()),
+            (Some(_), _) if self.dimension == 2 => {
+                return Err(SphError::invalid(
+                    key("width"),
+                    s.width.unwrap_or_default(),
+                    "no width in 2D (a 2D face is a segment `size` long)",
+                ))
+            }
+            (Some(w), Some(a)) => (w, a),
+            (Some(w), None) => {
+                return Err(SphError::invalid(
+                    key("width"),
+                    w,
+                    "`along` with it: the direction of the rectangle's `size` side",
+                ))
+            }
+            (None, Some(a)) => {
+                return Err(SphError::invalid(
+                    key("along"),
+                    format!("{a:?}"),
+                    "`width` with it: `along` orients a rectangular face",
+                ))
+            }
+        };
+        positive(&key("width"), width)?;
+        components(&key("along"), along, self.dimension)?;
+        let dot: f64 = along.iter().zip(&s.normal).map(|(a, n)| a * n).sum();
+        let (a2, n2): (f64, f64) = (
+            along.iter().map(|a| a * a).sum(),
+            s.normal.iter().map(|n| n * n).sum(),
+        );
+        if a2 * n2 - dot * dot <= 1e-12 * a2 * n2 {
+            return Err(SphError::invalid(
+                key("along"),
+                format!("{along:?}"),
+                format!(
+                    "a direction in the face's plane, not along its normal {:?}",
+                    s.normal
+                ),
+            ));
         }
         Ok(())
     }
@@ -541,6 +591,49 @@ fn only_2d(d: usize, field: &str) -> Result<()> {
 mod tests {
     use super::super::tests::{error_of, MINIMAL};
     use super::super::Case;
+
+    /// A 3D rectangle sensor on the tank's +x face, with `extra` keys.
+    fn sensor_3d(extra: &str) -> String {
+        MINIMAL
+            .replace("dimension = 2", "dimension = 3")
+            .replace("[0.0, -9.81]", "[0.0, 0.0, -9.81]")
+            .replace("lo = [0.0, 0.0]", "lo = [0.0, 0.0, 0.0]")
+            .replace("hi = [0.2, 0.1]", "hi = [0.2, 0.1, 0.1]")
+            .replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3, 0.3]")
+            + "[[diagnostics.sensors]]\nname = \"s\"\ncentre = [0.5, 0.1, 0.05]\n\
+               normal = [-1.0, 0.0, 0.0]\nsize = 0.02\n"
+            + extra
+    }
+
+    #[test]
+    fn rectangle_sensors_need_a_width_and_a_direction_in_their_plane() {
+        assert!(Case::from_toml_str(&sensor_3d("width = 0.01\nalong = [0.0, 0.0, 1.0]\n")).is_ok());
+        let e = error_of(&sensor_3d("width = 0.01\n"));
+        assert!(
+            e.starts_with("diagnostics.sensors[0].width = 0.01: expected `along` with it"),
+            "{e}"
+        );
+        let e = error_of(&sensor_3d("along = [0.0, 1.0, 0.0]\n"));
+        assert!(
+            e.starts_with("diagnostics.sensors[0].along = [0.0, 1.0, 0.0]: expected `width`"),
+            "{e}"
+        );
+        let e = error_of(&sensor_3d("width = 0.01\nalong = [2.0, 0.0, 0.0]\n"));
+        assert!(
+            e.starts_with("diagnostics.sensors[0].along = [2.0, 0.0, 0.0]: expected a direction in the face's plane"),
+            "{e}"
+        );
+        let e = error_of(&sensor_3d("width = -0.01\nalong = [0.0, 0.0, 1.0]\n"));
+        assert!(e.starts_with("diagnostics.sensors[0].width = -0.01"), "{e}");
+        let flat = MINIMAL.to_string()
+            + "[[diagnostics.sensors]]\nname = \"s\"\ncentre = [0.5, 0.1]\n\
+               normal = [-1.0, 0.0]\nsize = 0.02\nwidth = 0.01\n";
+        let e = error_of(&flat);
+        assert!(
+            e.starts_with("diagnostics.sensors[0].width = 0.01: expected no width in 2D"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn absurd_spacing_is_refused_before_building() {

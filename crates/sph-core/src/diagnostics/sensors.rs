@@ -1,5 +1,5 @@
-//! Pressure sensors as they are built: a face on a wall (a segment in 2D, a disc in
-//! 3D) whose reading is the probe pressure averaged over its area, optionally passed
+//! Pressure sensors as they are built: a face on a wall (a segment in 2D, a disc or a
+//! rectangle in 3D) whose reading is the probe pressure averaged over its area, optionally passed
 //! through a low-pass filter in time, as a transducer and its amplifier do. The raw
 //! point value at the face's centre is written beside both.
 //!
@@ -37,21 +37,28 @@ impl<const D: usize> Sensor<D> {
     pub fn new(config: &SensorConfig, dx: f64, interval: f64) -> Self {
         let centre: Vector<D> = Vector::from_fn(|d, _| config.centre[d]);
         let normal: Vector<D> = Vector::<D>::from_fn(|d, _| config.normal[d]).normalize();
-        let m = (config.size / (0.25 * dx))
-            .ceil()
-            .clamp(MIN_SAMPLES as f64, MAX_SAMPLES as f64) as usize;
-        let offsets: Vec<f64> = (0..m)
-            .map(|k| config.size * ((k as f64 + 0.5) / m as f64 - 0.5))
-            .collect();
+        let offsets = |length: f64| midpoints(length, dx);
         let points = if D == 2 {
             let tangent = Vector::<D>::from_fn(|d, _| [-normal[1], normal[0]][d]);
-            offsets.iter().map(|&s| centre + tangent * s).collect()
+            offsets(config.size)
+                .iter()
+                .map(|&s| centre + tangent * s)
+                .collect()
+        } else if let (Some(width), Some(along)) = (config.width, &config.along) {
+            let a = Vector::<D>::from_fn(|d, _| along[d]);
+            let t1 = (a - normal * normal.dot(&a)).normalize();
+            let t2 = cross(&normal, &t1);
+            let across = offsets(width);
+            offsets(config.size)
+                .iter()
+                .flat_map(|&s| across.iter().map(move |&b| centre + t1 * s + t2 * b))
+                .collect()
         } else {
             let (t1, t2) = tangents(&normal);
             let radius = 0.5 * config.size;
-            offsets
-                .iter()
-                .flat_map(|&a| offsets.iter().map(move |&b| (a, b)))
+            let grid = offsets(config.size);
+            grid.iter()
+                .flat_map(|&a| grid.iter().map(move |&b| (a, b)))
                 .filter(|(a, b)| a * a + b * b <= radius * radius)
                 .map(|(a, b)| centre + t1 * a + t2 * b)
                 .collect()
@@ -70,6 +77,17 @@ impl<const D: usize> Sensor<D> {
     }
 }
 
+/// The midpoints of `m` equal parts of a side `length` long, centred on 0: no further
+/// than Δx/4 apart, with `MIN_SAMPLES <= m <= MAX_SAMPLES`.
+fn midpoints(length: f64, dx: f64) -> Vec<f64> {
+    let m = (length / (0.25 * dx))
+        .ceil()
+        .clamp(MIN_SAMPLES as f64, MAX_SAMPLES as f64) as usize;
+    (0..m)
+        .map(|k| length * ((k as f64 + 0.5) / m as f64 - 0.5))
+        .collect()
+}
+
 /// Two unit vectors completing `n` (unit) to an orthonormal basis (3D).
 fn tangents<const D: usize>(n: &Vector<D>) -> (Vector<D>, Vector<D>) {
     let axis = (0..D)
@@ -77,11 +95,15 @@ fn tangents<const D: usize>(n: &Vector<D>) -> (Vector<D>, Vector<D>) {
         .unwrap_or(0);
     let e = Vector::<D>::from_fn(|d, _| if d == axis { 1.0 } else { 0.0 });
     let t1 = (e - n * n.dot(&e)).normalize();
-    let t2 = Vector::<D>::from_fn(|d, _| {
+    (t1, cross(n, &t1))
+}
+
+/// `a × b` (3D).
+fn cross<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+    Vector::<D>::from_fn(|d, _| {
         let (i, j) = ((d + 1) % 3, (d + 2) % 3);
-        n[i] * t1[j] - n[j] * t1[i]
-    });
-    (t1, t2)
+        a[i] * b[j] - a[j] * b[i]
+    })
 }
 
 /// Second-order Butterworth low-pass at a fixed sampling interval.
@@ -167,6 +189,8 @@ mod tests {
             centre,
             normal,
             size: 0.01,
+            width: None,
+            along: None,
             cutoff: None,
         };
         let segment = Sensor::<2>::new(&config(vec![1.0, 0.2], vec![-1.0, 0.0]), 0.004, 1e-3);
@@ -189,6 +213,51 @@ mod tests {
         assert!(
             (area / (std::f64::consts::PI * 0.005 * 0.005) - 1.0).abs() < 0.1,
             "{area}"
+        );
+    }
+
+    /// A rectangle `size` long along `along` and `width` across it, on a wall whose
+    /// normal is x: its midpoints fill the rectangle, no further than Δx/4 apart, so
+    /// the average of a linear field is its value at the centre, and the average of
+    /// (z - z_c)², w²/12 (1 - 1/m²) by the midpoint rule with m points across, is that
+    /// of the face.
+    #[test]
+    fn rectangles_are_sampled_along_and_across() {
+        let config = SensorConfig {
+            name: "r".into(),
+            centre: vec![1.0, 0.3, 0.2],
+            normal: vec![-1.0, 0.0, 0.0],
+            size: 0.012,
+            width: Some(0.006),
+            along: Some(vec![0.5, 1.0, 0.0]),
+            cutoff: None,
+        };
+        let face = Sensor::<3>::new(&config, 0.004, 1e-3);
+        assert_eq!(face.points.len(), 12 * 6);
+        assert!(face.points.iter().all(|p| (p[0] - 1.0).abs() < 1e-15));
+        let extent = |d: usize| {
+            let dev = face.points.iter().map(|p| (p[d] - config.centre[d]).abs());
+            dev.fold(0.0f64, f64::max)
+        };
+        // the sides run along y (projected from `along`) and z, each to half a spacing
+        // of its samples from its ends
+        assert!(
+            (extent(1) - (0.006 - 0.0005)).abs() < 1e-12,
+            "{}",
+            extent(1)
+        );
+        assert!(
+            (extent(2) - (0.003 - 0.0005)).abs() < 1e-12,
+            "{}",
+            extent(2)
+        );
+        let linear = face.average(|p| 2.0 + 3.0 * p[1] - 5.0 * p[2]);
+        assert!((linear - (2.0 + 0.9 - 1.0)).abs() < 1e-12, "{linear}");
+        let square = face.average(|p| (p[2] - 0.2).powi(2));
+        let exact = 0.006f64.powi(2) / 12.0;
+        assert!(
+            (square / exact - (1.0 - 1.0 / 36.0)).abs() < 1e-9,
+            "{square} against {exact}"
         );
     }
 }

@@ -23,6 +23,19 @@ pub enum Role {
     Cut,
 }
 
+/// What a shape's file holds, told by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// `.stl`: a triangulated surface (3D).
+    Stl,
+    /// `.svg`: a drawing with an outline element (2D).
+    Svg,
+    /// `.dxf`: a drawing with a 2D polyline (2D).
+    Dxf,
+    /// Anything else: a vertex list (2D).
+    Vertices,
+}
+
 /// A disc (2D) or ball (3D).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -70,11 +83,18 @@ pub struct ShapeConfig {
     /// `circle`, `sphere`, `cylinder` or `box`.
     #[serde(default)]
     pub polygon: Option<Vec<Vec<f64>>>,
-    /// A file: `.stl` (3D, ASCII or binary, closed and outward-facing), or (2D) a
-    /// vertex list, one `x y` or `x, y` pair a line, `#` comments. A relative path is
-    /// taken from the case file's folder.
+    /// A file: `.stl` (3D, ASCII or binary, closed and outward-facing); in 2D an
+    /// `.svg` drawing (one `path`, `polygon`, `polyline` or `rect` element; SVG's
+    /// downward y axis is turned up, so the shape looks as drawn), a `.dxf` drawing
+    /// (one closed `LWPOLYLINE` or 2D `POLYLINE`, bulges as arcs), or any other name a
+    /// vertex list, one `x y` or `x, y` pair a line, `#` comments. Curves become chords
+    /// within Δx/100. A relative path is taken from the case file's folder.
     #[serde(default)]
     pub file: Option<String>,
+    /// Which outline of an `.svg` or `.dxf` file: the SVG element's `id`, or the DXF
+    /// layer. Default: the drawing's only outline.
+    #[serde(default)]
+    pub outline: Option<String>,
     /// 2D disc.
     #[serde(default)]
     pub circle: Option<BallConfig>,
@@ -126,6 +146,20 @@ impl ShapeConfig {
         .into_iter()
         .filter_map(|(key, set)| set.then_some(key))
         .collect()
+    }
+
+    /// What the shape's file holds, if it has one.
+    pub fn file_kind(&self) -> Option<FileKind> {
+        let path = std::path::Path::new(self.file.as_deref()?);
+        let extension = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        Some(match extension.as_deref() {
+            Some("stl") => FileKind::Stl,
+            Some("svg") => FileKind::Svg,
+            Some("dxf") => FileKind::Dxf,
+            _ => FileKind::Vertices,
+        })
     }
 
     /// The scale factor in force (1 unless set).
@@ -190,9 +224,17 @@ impl Case {
         if let Some(b) = &s.cuboid {
             check_box(&format!("{key}.box"), &b.lo, &b.hi, d)?;
         }
-        if let Some(f) = &s.file {
-            let stl = f.to_ascii_lowercase().ends_with(".stl");
-            only("file", if stl { 3 } else { 2 })?;
+        if let Some(kind) = s.file_kind() {
+            only("file", if kind == FileKind::Stl { 3 } else { 2 })?;
+        }
+        let drawing = matches!(s.file_kind(), Some(FileKind::Svg | FileKind::Dxf));
+        if s.outline.is_some() && !drawing {
+            return Err(SphError::invalid(
+                format!("{key}.outline"),
+                "(set)",
+                "a file = \"*.svg\" or \"*.dxf\" beside it (outline picks an element or a \
+                 layer of a drawing)",
+            ));
         }
         positive(&format!("{key}.scale"), s.scale())?;
         self.check_role_keys(&key, s)

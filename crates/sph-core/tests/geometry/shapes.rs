@@ -4,18 +4,19 @@
 use sph_core::{Case, Kind, Simulation};
 use std::path::PathBuf;
 
-const HEAD_2D: &str = "dimension = 2\n[particles]\nspacing = 0.05\n[fluid]\ndensity = 1000.0\n\
+pub(crate) const HEAD_2D: &str =
+    "dimension = 2\n[particles]\nspacing = 0.05\n[fluid]\ndensity = 1000.0\n\
                        sound_speed = 20.0\n[time]\nend = 0.1\n";
 const HEAD_3D: &str = "dimension = 3\n[particles]\nspacing = 0.05\n[fluid]\ndensity = 1000.0\n\
                        sound_speed = 20.0\n[time]\nend = 0.1\n";
 
-fn build<const D: usize>(text: &str) -> Simulation<D> {
+pub(crate) fn build<const D: usize>(text: &str) -> Simulation<D> {
     let case = Case::from_toml_str(text).unwrap_or_else(|e| panic!("{e}\n{text}"));
     Simulation::<D>::new(case).unwrap_or_else(|e| panic!("{e}\n{text}"))
 }
 
 /// The one-line error a case gives, from parsing or from building.
-fn error_of<const D: usize>(text: &str) -> String {
+pub(crate) fn error_of<const D: usize>(text: &str) -> String {
     let e = match Case::from_toml_str(text) {
         Err(e) => e.to_string(),
         Ok(case) => match Simulation::<D>::new(case) {
@@ -27,7 +28,7 @@ fn error_of<const D: usize>(text: &str) -> String {
     e
 }
 
-fn positions<const D: usize>(sim: &Simulation<D>, kind: Kind) -> Vec<Vec<i64>> {
+pub(crate) fn positions<const D: usize>(sim: &Simulation<D>, kind: Kind) -> Vec<Vec<i64>> {
     let p = sim.particles();
     let mut out: Vec<Vec<i64>> = (0..p.len())
         .filter(|&i| p.kind[i] == kind)
@@ -37,7 +38,7 @@ fn positions<const D: usize>(sim: &Simulation<D>, kind: Kind) -> Vec<Vec<i64>> {
     out
 }
 
-fn fluid_shape(geometry: &str) -> String {
+pub(crate) fn fluid_shape(geometry: &str) -> String {
     format!("[[shape]]\nrole = \"fluid\"\nhydrostatic = false\n{geometry}\n")
 }
 
@@ -190,7 +191,7 @@ fn cube_triangles(side: f32, inverted: bool, holed: bool) -> Vec<stl_io::Triangl
         .collect()
 }
 
-fn scratch(name: &str) -> PathBuf {
+pub(crate) fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("deltasph-shapes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)

@@ -1,17 +1,20 @@
-//! Solids of any shape for `[[shape]]`: closed polygons (inline or from a vertex
-//! file), STL surfaces, and the primitives circle, sphere, cylinder and box. Each
+//! Solids of any shape for `[[shape]]`: closed polygons (inline, or from a vertex
+//! list, an SVG or a DXF drawing), STL surfaces, and the primitives circle, sphere, cylinder and box. Each
 //! answers one query, the signed distance of a point to its surface (negative
 //! inside), computed by parry (`parry2d-f64`, `parry3d-f64`): point projection on an
 //! oriented polyline or triangle mesh, whose pseudo-normals tell inside from outside.
 //!
 //! What makes a surface unusable is refused with a one-line error naming the key:
-//! an open, degenerate or self-intersecting polygon ([`polygon`]), an STL that is not
-//! closed or faces inwards ([`mesh`]).
+//! an open, degenerate or self-intersecting polygon ([`polygon`], [`outline`]), an STL
+//! that is not closed or faces inwards ([`mesh`]).
 
+mod dxf;
 mod mesh;
+mod outline;
 mod polygon;
+mod svg;
 
-use crate::case::{Case, ShapeConfig};
+use crate::case::{Case, FileKind, ShapeConfig};
 use crate::error::Result;
 use parry2d_f64::shape as plane;
 use parry3d_f64::shape as space;
@@ -95,16 +98,22 @@ pub fn build(case: &Case, k: usize) -> Result<Solid> {
     }
     if let Some(path) = &s.file {
         let key = format!("{key}.file");
-        return if case.dimension == 3 {
-            mesh::solid(&key, path, s.scale())
-        } else {
-            let vertices = polygon::read(&key, path)?;
-            let scaled = vertices
-                .into_iter()
-                .map(|[x, y]| [x * s.scale(), y * s.scale()])
-                .collect();
-            polygon::solid(&key, scaled)
+        if case.dimension == 3 {
+            return mesh::solid(&key, path, s.scale());
+        }
+        // curves become chords within Δx/100 of them, in the file's units
+        let tolerance = 0.01 * case.dx() / s.scale();
+        let outline = s.outline.as_deref();
+        let vertices = match s.file_kind() {
+            Some(FileKind::Svg) => svg::read(&key, path, outline, tolerance)?,
+            Some(FileKind::Dxf) => dxf::read(&key, path, outline, tolerance)?,
+            _ => polygon::read(&key, path)?,
         };
+        let scaled = vertices
+            .into_iter()
+            .map(|[x, y]| [x * s.scale(), y * s.scale()])
+            .collect();
+        return polygon::solid(&key, scaled);
     }
     Ok(primitive(s))
 }

@@ -32,38 +32,38 @@ surface.
   H/Δx = 20–30.
 """,
     "dam_break": """
-Reference: Buchner's P1 trace (grade C, good to a few percent). The digitised curve
-jumps to 0.6–0.7 ρ0gH at t* ≈ 2.6 and holds a plateau of 0.54 over t* 3.3–5.2.
-- The front reaches the wall on time: the pressure rises at t* = 2.53–2.7 at every
-  resolution, against 2.45–2.5 in the experiment.
-- The pressure then builds up too slowly. P1 averages 0.01–0.1 over t* 2.5–3.0 and
-  0.18–0.2 over 3.0–3.3. Snapshots show the high pressure confined to the corner below
-  P1 while a thin jet with near-zero pressure runs up past the probe.
-- From t* ≈ 4 the instantaneous values reach the experiment's level (0.5–0.6). The
-  t* 3.3–5.2 mean, the error plotted here, stays at 0.36–0.38 at H/Δx = 50 and 80 in
-  every variant because it still contains the slow rise. The plotted error is this
-  model-against-experiment gap (30%), and it does not converge.
-- The gap does not depend on resolution (H/Δx 30 to 80), c0 (14 or 40 sqrt(gH):
-  0.39 and 0.40), α (0 to 0.1: 0.39–0.40) or h/Δx (1.33 or 2 at H/Δx = 30: 0.384 and
-  0.392). No-slip walls lower it (0.32).
-- The comparison hinges on the probe height, which the sources disagree on: PySPH puts
-  P1 at 0.2H = 0.12 m, Adami et al. and TrixiParticles at 0.16 m (the latter averaging
-  over a 9 mm sensor face, which changes nothing here). At H/Δx = 50 the plateau mean
-  is 0.574 at y = 0.12 m (+6% on the experiment) and 0.386 at 0.16 m. The pressure
-  there falls with height at three times the hydrostatic rate, because the run-up flow
-  accelerates up the wall. The first impact (t* 2.5–3.0) is still low at 0.12 m: 0.30
-  against about 0.6.
-- Self-convergence (`vs_fine`, against the δ-SPH RK4 run at H/Δx = 80): δ-SPH RK4
-  halves its difference between H/Δx = 20 and 50 (0.15, 0.10, 0.071 ρ0gH at 20, 30,
-  50); MC and Ferrari follow the same trend at 0.05–0.13. Standard SPH's P1 carries
-  ±2 ρ0gH spikes and is 0.2–0.8 away up to H/Δx = 50.
+P1 is read at y = 0.2H = 0.12 m, where the published δ-SPH runs put their probe: that
+probe reproduces the curve called Buchner's P1 (refdata README §2a), while at the
+experimental sensor's centre, 0.16 m, every 2D SPH code reads a plateau of about 0.37.
+The reference is Marrone et al. (2011)'s δ-SPH at H/Δx = 320 (grade C, hand-digitised);
+the error plotted is the RMS difference of our signal's 0.1 t* moving average from
+theirs over t* 2–7. `vs_marrone_same` compares with their run at the same H/Δx (40, 80).
+- δ-SPH RK4 converges towards their signal: 0.309, 0.290, 0.171, 0.147 ρ0gH at H/Δx 15,
+  20, 40, 80. Against their run at the same resolution it differs by 0.182 (40) and
+  0.136 (80): less than their own 40-to-320 spread.
+- The plateau (t* 3.3–5.2) is 0.568 at H/Δx 40 and 80 with δ-SPH RK4, against 0.563 for
+  Marrone's H/Δx 320 and 0.540 for the experiment. MC and Ferrari give 0.535–0.554;
+  standard SPH reaches 0.568 at H/Δx 80 but through ±2–10 ρ0gH spikes.
+- The pressure rises (p* > 0.1) at t* 2.50–2.62 in every run, against 2.45–2.5 in the
+  experiment. The first peak (the raw signal's largest value over t* 2.3–3.2) is an
+  acoustic spike of a few ρ0gH up to H/Δx 40 in every variant; at H/Δx 80 δ-SPH RK4
+  reads 0.75 at t* 2.93, MC 0.83 at 3.01 (experiment: 0.69 at about 2.75). The face
+  sensors of `dam_break_wall.md` are the measure to compare with a real sensor there.
+- Where the runs and the reference part is the first impact (plot): as the front
+  arrives (t* 2.45–2.6) the averaged signal dips to between −0.3 and −1.9 ρ0gH, the raw
+  probe's acoustic spikes of both signs, and then rises gradually to the plateau by
+  t* ≈ 3.2, while Marrone's jumps to about 0.68 at t* 2.7. Most of each run's error
+  lies there; the plateau itself matches.
+- At H/Δx 80 MC RK4 is as close to the reference as δ-SPH (0.151 against 0.147);
+  Ferrari is 0.207 and standard SPH 0.189.
 
 The integrators:
-- SE2 needs CFL 0.15 to survive the run-up jet. At 0.2 and above, a particle is driven
-  into the right wall. It costs 2.5–4× RK4 at the same resolution for the same
-  plateau, so within 60 s it reaches H/Δx = 30 where RK4 reaches 50.
-- The 60-s winner of the plateau error is a draw: every diffusive variant lies at
-  0.29–0.34 from H/Δx = 30 on, inside the spread of the model-experiment gap.
+- SE2 needs CFL 0.15 to survive the run-up jet (the dam-break example's wall model; at
+  0.2 and above a particle is driven into the right wall). It costs 4–6× RK4 at the same
+  resolution for a larger error (δ-SPH at H/Δx 40: 0.226 against 0.171), so its runs at
+  80 are over the per-run cap.
+- Within 60 s, the lowest error is δ-SPH or MC RK4 at H/Δx 40 (0.17): the RK4 runs at 80
+  take 74–98 s on this machine.
 """,
 
     "surge_front": """

@@ -1,7 +1,6 @@
 """Plots, tables and the README of the validation report (written by run_all.py)."""
 
 import math
-import pathlib
 
 import matplotlib
 
@@ -9,12 +8,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from cases import buchner, smooth  # noqa: E402
+from cases import MARRONE_RUNS, buchner, marrone, smooth  # noqa: E402
 from reading import INTRO, READING  # noqa: E402
 
 BUDGET_S = 60.0
-#: the converged fine P1 signal of our own (the finest δ-SPH RK4 dam break run so far)
-FINE_P1 = pathlib.Path(__file__).resolve().parent / "reference" / "dam_break_p1_fine.csv"
 
 
 def variant(row):
@@ -66,48 +63,13 @@ def plot_case(out, case, rows):
     plt.close(fig)
 
 
-def fine_p1(signals):
-    """The reference for `vs_fine`: the finest δ-SPH RK4 P1 signal, of this suite run or
-    stored by an earlier one, whichever is finer. A finer run replaces the stored file."""
-    runs = [k for k in signals if k[1:3] == ("δ-SPH", "RK4")]
-    finest = max(runs, key=lambda k: k[3], default=None)
-    stored = None
-    if FINE_P1.exists():
-        header = FINE_P1.read_text().splitlines()[0]
-        data = np.loadtxt(FINE_P1, delimiter=",", comments="#")
-        stored = (float(header.split("H/Δx = ")[1].split(",")[0]), data[:, 0], data[:, 1])
-    if finest is not None and (stored is None or finest[3] > stored[0]):
-        t, p = signals[finest]
-        FINE_P1.parent.mkdir(exist_ok=True)
-        np.savetxt(FINE_P1, np.column_stack([t, p]), delimiter=",", fmt="%.5f",
-                   header=f"δ-SPH RK4 at H/Δx = {finest[3]:g}, P1 (x = 3.2196 m, y = 0.16 m), "
-                          "written by examples/validation/run_all.py\nt_star,p_over_rho0_g_H")
-        return finest[3], t, p
-    return stored
-
-
-def dam_break_against_fine(rows, signals):
-    """RMS difference of smoothed P1 over t* in [2.3, 7] against the fine reference."""
-    fine = fine_p1(signals)
-    if fine is None:
-        return None
-    n_fine, t_ref, ref = fine
-    ref = smooth(t_ref, ref)
-    window = (t_ref >= 2.3) & (t_ref <= 7.0)
-    for r in rows:
-        key = (r["case"], r["diffusion"], r["integrator"], r["resolution"])
-        if key in signals and not (key[1:3] == ("δ-SPH", "RK4") and key[3] == n_fine):
-            t, p = signals[key]
-            diff = np.interp(t_ref, t, smooth(t, p)) - ref
-            kept = [d for d in r["details"].split("; ") if not d.startswith("vs_fine=")]
-            r["details"] = "; ".join(kept + [f"vs_fine={np.sqrt(np.mean(diff[window] ** 2)):.4g}"])
-    return n_fine
-
-
 def plot_p1(out, signals):
     fig, ax = plt.subplots(figsize=(10, 4.2), constrained_layout=True)
     t_exp, p_exp = buchner()
     ax.plot(t_exp, p_exp, "k.", ms=3, label="Buchner (2002), digitised")
+    ref = marrone()
+    ax.plot(ref[:, 0], ref[:, MARRONE_RUNS[320]], "k-", lw=1.6,
+            label="Marrone et al. (2011), δ-SPH H/Δx = 320, y = 0.2H")
     finest = {}
     for key in signals:
         label = f"{key[1]} {key[2]}"
@@ -118,7 +80,7 @@ def plot_p1(out, signals):
         ax.plot(t, smooth(t, p), lw=1, label=f"{label}, H/Δx = {key[3]:g} (0.1 t* average)")
     ax.set_xlim(2.0, 7.0)
     ax.set_xlabel("t·sqrt(g/H)")
-    ax.set_ylabel("p / ρ0 g H at P1")
+    ax.set_ylabel("p / ρ0 g H at P1 (y = 0.2H)")
     ax.legend(fontsize=8)
     fig.savefig(out / "dam_break_p1.png", dpi=110)
     plt.close(fig)
@@ -217,7 +179,6 @@ def write(out, mode, cases, rows, signals, skipped, total):
     for case in cases:
         case_rows = [r for r in rows if r["case"] == case.name]
         if case.name == "dam_break":
-            fine = dam_break_against_fine(case_rows, signals)
             plot_p1(out, signals)
         plot_case(out, case, case_rows)
         text.append(f"## {case.title}\n")
@@ -225,10 +186,6 @@ def write(out, mode, cases, rows, signals, skipped, total):
         text.append(f"![{case.name}]({case.name}.png)\n")
         if case.name == "dam_break":
             text.append("![P1 signals](dam_break_p1.png)\n")
-            if fine:
-                text.append(f"`vs_fine`: RMS difference of the 0.1 t*-averaged P1 signal over "
-                            f"t* ∈ [2.3, 7] from the δ-SPH RK4 run at H/Δx = {fine:g} "
-                            f"(`{FINE_P1.name}`), in ρ0gH.\n")
         text.append(summary(case_rows) + "\n")
         text.append(skipped_note([s for s in skipped if s[0] == case.name]))
         text.append(table(case_rows) + "\n")

@@ -125,13 +125,6 @@ def save_signals(out, signals):
     (out / SIGNALS).write_text(json.dumps(stored))
 
 
-def write_csv(out, rows):
-    with open(out / "results.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
-
-
 def main():
     args = arguments()
     args.out.mkdir(parents=True, exist_ok=True)
@@ -172,7 +165,6 @@ def main():
     csv_file.close()
     stepping = sum(r["wall_s"] for r in rows)
     report.write(args.out, args.mode, chosen, rows, signals, skipped, stepping)
-    write_csv(args.out, rows)  # again, with what the report added (vs_fine)
     print(f"{len(rows)} runs, {stepping:.0f} s of stepping; report in {args.out / 'README.md'}")
 
 

@@ -8,6 +8,7 @@ mod free_surface;
 mod hydrostatic;
 mod loads;
 mod long_runs;
+mod open_boundaries;
 mod shifting;
 mod taylor_green;
 mod time_integration;

@@ -443,6 +443,12 @@ fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
         lo.as_slice(),
         hi.as_slice()
     );
+    if !sim.case().open_boundary.is_empty() {
+        println!(
+            "created         {} fluid particles entered at inlets",
+            sim.counters().created
+        );
+    }
     println!(
         "energy          E_k+E_p+E_c: {:.6e} → {:.6e} J (change {:+.3e})",
         initial_energy,

@@ -419,6 +419,12 @@ impl PySimulation {
         each!(&self.solver, s => s.removed())
     }
 
+    /// Fluid particles created so far at inlets (each with a new id, a new row).
+    #[getter]
+    fn n_created(&self) -> u64 {
+        each!(&self.solver, s => s.counters().created)
+    }
+
     /// Number of particles in the run, fluid and wall (the state arrays have a row
     /// for every id ever given: this plus ``n_removed``).
     #[getter]

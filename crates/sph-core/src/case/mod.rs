@@ -4,11 +4,13 @@
 //! the TOML parser report). All quantities are SI.
 
 pub mod json_schema;
+mod open_boundaries;
 mod schema;
 mod shapes;
 mod toml_errors;
 mod validate;
 
+pub use open_boundaries::*;
 pub use schema::*;
 pub use shapes::*;
 pub use validate::MAX_PARTICLES;

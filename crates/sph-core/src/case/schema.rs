@@ -2,6 +2,7 @@
 //! default. Unknown keys are rejected by serde; values are checked in
 //! [`super::validate`]. All quantities are SI.
 
+use super::open_boundaries::OpenBoundaryConfig;
 use super::shapes::{Role, ShapeConfig};
 use crate::physics::kernel::KernelChoice;
 use schemars::JsonSchema;
@@ -32,6 +33,9 @@ pub struct Case {
     pub shape: Vec<ShapeConfig>,
     #[serde(default)]
     pub domain: Option<DomainConfig>,
+    /// Inflow and outflow buffers at the ends of the domain.
+    #[serde(default)]
+    pub open_boundary: Vec<OpenBoundaryConfig>,
     #[serde(default)]
     pub initial: Option<InitialField>,
     #[serde(default)]

@@ -51,6 +51,9 @@ impl Case {
         for (k, shape) in self.shape.iter().enumerate() {
             self.check_shape(k, shape)?;
         }
+        for (k, b) in self.open_boundary.iter().enumerate() {
+            self.check_open_boundary(k, b)?;
+        }
         for (k, b) in self.fluid_block.iter().enumerate() {
             check_box(&format!("fluid_block[{k}]"), &b.lo, &b.hi, d)?;
             if let Some(v) = &b.velocity {

@@ -6,7 +6,7 @@
 //! - the neighbour lists, rebuilt from the positions of their last build and the same
 //!   skin, so that the next list rebuild happens at the same step;
 //! - the step count, time, last Δt, the acceleration that sizes the list skin, the
-//!   energy budget and the count of particles removed;
+//!   energy budget and the counts of particles removed and created;
 //! - the output schedule of the driver ([`Schedule`]).
 //!
 //! The file is HDF5 (`restart.h5` in a run folder, the one before it kept as
@@ -96,6 +96,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
         ("evaluations", c.counters.evaluations),
         ("rebuilds", c.counters.rebuilds),
         ("removed", c.counters.removed),
+        ("created", c.counters.created),
         ("snapshots", s.snapshots),
         ("next_id", p.next_id as u64),
     ];
@@ -254,6 +255,7 @@ impl Reader<'_> {
                 evaluations: self.attr("evaluations")?,
                 rebuilds: self.attr("rebuilds")?,
                 removed: self.attr("removed").unwrap_or(0),
+                created: self.attr("created").unwrap_or(0),
             },
             last_acceleration: self.attr("last_acceleration")?,
             budget: self.budget()?,

@@ -9,6 +9,7 @@ mod series;
 pub use checkpoint::Checkpoint;
 
 use crate::boundary::bodies::{body_of, Body, Load};
+use crate::boundary::open::OpenBoundaries;
 use crate::case::{Case, IntegratorChoice, ShiftingChoice};
 use crate::diagnostics::sensors::Sensor;
 use crate::diagnostics::{self, Energies};
@@ -40,6 +41,8 @@ pub struct Counters {
     pub rebuilds: u64,
     /// Fluid particles removed because they left the domain.
     pub removed: u64,
+    /// Fluid particles created at inlets.
+    pub created: u64,
 }
 
 /// The running energy budget of SCHEME.md §10 (only when the case asks for it):
@@ -96,6 +99,8 @@ pub struct Simulation<const D: usize> {
     bodies: Vec<Body>,
     /// The face sensors of the series, with their filters' state.
     sensors: Vec<Sensor<D>>,
+    /// Inflow and outflow buffers, when the case has any.
+    open: Option<OpenBoundaries<D>>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -135,6 +140,8 @@ impl<const D: usize> Simulation<D> {
         let sensors = (case.diagnostics.sensors.iter())
             .map(|s| Sensor::new(s, case.dx(), case.series_interval()))
             .collect();
+        check_inflow_speeds(&case, setup.eos.c0)?;
+        let open = OpenBoundaries::of(&case, &setup.particles, &setup.eos);
         let mut sim = Self {
             case,
             particles: setup.particles,
@@ -152,6 +159,7 @@ impl<const D: usize> Simulation<D> {
             last_acceleration: 0.0,
             bodies: setup.bodies,
             sensors,
+            open,
         };
         sim.rebuild(0.0);
         sim.state_changed();
@@ -290,13 +298,19 @@ impl<const D: usize> Simulation<D> {
     fn shift(&mut self, speed: f64) -> FreeSurface<D> {
         let dt = self.dt;
         let cfl_ma = speed * dt / self.case.h();
-        let shift = self.model.shift(
+        let mut shift = self.model.shift(
             &mut self.particles,
             &self.list,
             &self.domain,
             self.case.dx(),
             cfl_ma,
         );
+        if let Some(open) = &self.open {
+            let p = &self.particles;
+            (shift.dr.par_iter_mut().enumerate())
+                .filter(|(i, _)| open.in_buffer(p, *i))
+                .for_each(|(_, dr)| *dr = Vector::zeros());
+        }
         if let (true, Some(velocity)) = (dt > 0.0, self.shift_velocity.as_mut()) {
             let domain = self.domain;
             self.particles
@@ -341,13 +355,14 @@ impl<const D: usize> Simulation<D> {
     /// in the current particle order.
     pub fn rates(&mut self) -> Rates<D> {
         let mut rates = Rates::default();
-        self.model.evaluate(
-            &mut self.particles,
-            &self.list,
-            &self.domain,
-            &mut rates,
-            true,
-        );
+        let mut cx = Context {
+            model: self.model.as_mut(),
+            list: &self.list,
+            domain: &self.domain,
+            open: self.open.as_ref(),
+            time: self.time,
+        };
+        cx.evaluate(&mut self.particles, &mut rates, true);
         rates
     }
 
@@ -402,6 +417,8 @@ impl<const D: usize> Simulation<D> {
             model: self.model.as_mut(),
             list: &self.list,
             domain: &self.domain,
+            open: self.open.as_ref(),
+            time: self.time,
         };
         let a_max = self
             .integrator
@@ -426,13 +443,33 @@ impl<const D: usize> Simulation<D> {
         if let Some(b) = self.budget.as_mut() {
             b.pending = dt;
         }
-        self.remove_escaped();
+        let removed = self.remove_escaped();
+        let created = self.refill();
+        if removed || created {
+            let reach = self.reach(self.control.acoustic(), self.max_speed());
+            self.rebuild(reach);
+        }
         self.check_stability()
     }
 
+    /// Creates the particles that enter at inlets (see [`OpenBoundaries::refill`]);
+    /// whether there were any.
+    fn refill(&mut self) -> bool {
+        let Some(open) = &self.open else {
+            return false;
+        };
+        let created = open.refill(&mut self.particles);
+        if let Some(v) = self.shift_velocity.as_mut() {
+            v.resize(self.particles.len(), Vector::zeros());
+        }
+        self.counters.created += created as u64;
+        created > 0
+    }
+
     /// Removes the fluid particles that left the domain along an open direction (their
-    /// energy goes to the budget's `removed_energy`) and rebuilds the lists when any did.
-    fn remove_escaped(&mut self) {
+    /// energy goes to the budget's `removed_energy`); whether any did (the lists then
+    /// need a rebuild).
+    fn remove_escaped(&mut self) -> bool {
         let (p, domain) = (&self.particles, &self.domain);
         let keep: Vec<bool> = (0..p.len())
             .into_par_iter()
@@ -440,7 +477,7 @@ impl<const D: usize> Simulation<D> {
             .collect();
         let gone = keep.iter().filter(|&&k| !k).count();
         if gone == 0 {
-            return;
+            return false;
         }
         if let Some(b) = self.budget.as_mut() {
             let ph = self.model.physics();
@@ -453,8 +490,7 @@ impl<const D: usize> Simulation<D> {
             crate::particles::retain(v, &keep);
         }
         self.counters.removed += gone as u64;
-        let reach = self.reach(self.control.acoustic(), self.max_speed());
-        self.rebuild(reach);
+        true
     }
 
     /// Why the energy budget of this case does not close, when it does not: terms that
@@ -473,6 +509,9 @@ impl<const D: usize> Simulation<D> {
         }
         if case.scheme.tensile_control {
             why.push("tensile instability control is not energy-conserving");
+        }
+        if self.open.is_some() {
+            why.push("open boundaries set the buffers' state and add fluid without a flux term");
         }
         let g = self.physics().gravity;
         if (0..D).any(|d| self.domain.is_periodic(d) && g[d] != 0.0) {
@@ -581,4 +620,30 @@ impl<const D: usize> Simulation<D> {
     pub fn n_fluid(&self) -> usize {
         self.particles.n_fluid()
     }
+}
+
+/// Inflow speeds within the weakly compressible limit, |U| ≤ c0/10 (Mach 0.1, density
+/// variations of about 1%).
+fn check_inflow_speeds(case: &Case, c0: f64) -> Result<()> {
+    for (k, b) in case.open_boundary.iter().enumerate() {
+        let speed = b
+            .velocity
+            .iter()
+            .flatten()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt();
+        if speed > 0.1 * c0 {
+            return Err(SphError::invalid(
+                format!("open_boundary[{k}].velocity"),
+                format!("{:?}", b.velocity.as_deref().unwrap_or_default()),
+                format!(
+                    "an inflow speed of at most c0/10 = {:.4} m/s (Mach 0.1; raise \
+                     fluid.sound_speed or fluid.max_velocity)",
+                    0.1 * c0
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -25,6 +25,9 @@ impl<const D: usize> Simulation<D> {
         }
         h.push("max_density_variation".into());
         h.push("removed".into());
+        if !self.case.open_boundary.is_empty() {
+            h.push("created".into());
+        }
         h.extend((0..diag.probes.len()).map(|k| format!("probe{k}_pressure")));
         for s in &self.sensors {
             h.extend([format!("{}_pressure", s.name), format!("{}_point", s.name)]);
@@ -64,6 +67,9 @@ impl<const D: usize> Simulation<D> {
         }
         v.push(self.max_density_variation());
         v.push(self.counters.removed as f64);
+        if !self.case.open_boundary.is_empty() {
+            v.push(self.counters.created as f64);
+        }
         if !diag.probes.is_empty() || !self.sensors.is_empty() {
             self.sync_pressure();
             for probe in &diag.probes {

@@ -14,6 +14,7 @@
 //!   `u' = u + Δt a(w½)`, `ρ' = ρ + Δt ρ̇(w½)`, `x' = x + Δt (u + u')/2`.
 //!   Two force evaluations per step, diffusion in both.
 
+use crate::boundary::open::OpenBoundaries;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
@@ -25,6 +26,25 @@ pub struct Context<'a, const D: usize> {
     pub model: &'a mut dyn Model<D>,
     pub list: &'a NeighbourList<D>,
     pub domain: &'a Domain<D>,
+    /// The open boundaries, when the case has any, and the time at the step's start
+    /// (their inflow velocity is held over the step).
+    pub open: Option<&'a OpenBoundaries<D>>,
+    pub time: f64,
+}
+
+impl<const D: usize> Context<'_, D> {
+    /// The rates at the particles' state (see [`Model::evaluate`]), with the buffer
+    /// particles of open boundaries set before and held after.
+    pub fn evaluate(&mut self, p: &mut Particles<D>, rates: &mut Rates<D>, with_diffusion: bool) {
+        if let Some(open) = self.open {
+            open.prepare(p, self.list, self.domain, &*self.model, self.time);
+        }
+        self.model
+            .evaluate(p, self.list, self.domain, rates, with_diffusion);
+        if let Some(open) = self.open {
+            open.hold(p, rates);
+        }
+    }
 }
 
 /// A time integrator. `begin` evaluates the rates at the start of the step (the time
@@ -142,21 +162,17 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
     }
 
     fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
-        cx.model
-            .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        cx.evaluate(p, &mut self.rates, true);
         &self.rates
     }
 
     fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
         self.first_stage(p, 0.5 * dt);
-        cx.model
-            .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        cx.evaluate(p, &mut self.rates, false);
         self.stage(p, 2.0, 0.5 * dt);
-        cx.model
-            .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        cx.evaluate(p, &mut self.rates, false);
         self.stage(p, 2.0, dt);
-        cx.model
-            .evaluate(p, cx.list, cx.domain, &mut self.rates, false);
+        cx.evaluate(p, &mut self.rates, false);
         let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         let (ax, au, ar, d0) = (&self.acc_x, &self.acc_u, &self.acc_rho, &self.diff0);
         let s = dt / 6.0;
@@ -185,8 +201,7 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
     }
 
     fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
-        cx.model
-            .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        cx.evaluate(p, &mut self.rates, true);
         &self.rates
     }
 
@@ -203,8 +218,7 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
                 *u += r.du[i] * half;
                 *rho += (r.drho[i] + r.drho_diff[i]) * half;
             });
-        cx.model
-            .evaluate(p, cx.list, cx.domain, &mut self.rates, true);
+        cx.evaluate(p, &mut self.rates, true);
         let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())

@@ -1,0 +1,285 @@
+//! Open boundaries by the buffer method (Federico et al. 2012, Eur. J. Mech. B 34:35;
+//! the mirrored extrapolation of Tafuni et al. 2018, CMAME 342:604).
+//!
+//! A buffer is the slab of the domain within `width ≥ R` of one of its ends along an
+//! open axis. Its particles are fluid particles that take part in every pair sum (so
+//! the fluid next to the buffer sees a full kernel support), but whose state is set
+//! rather than integrated:
+//! - **inlet**: velocity prescribed, `u = U f(s) min(t/T, 1)` (profile f, ramp T, held
+//!   over each step); density extrapolated from the fluid at the point mirrored across
+//!   the buffer's inner face, `ρ_b = Σ_j ρ_j W(x_m - x_j) V_j / Σ_j W(x_m - x_j) V_j`
+//!   over the fluid outside the buffers (zero normal gradient);
+//! - **outlet**: density from the prescribed pressure (`ρ = ρ(p_out)` by the EOS);
+//!   the velocity a particle had when it entered, kept.
+//!
+//! Membership is by position, so it needs no per-particle flag and survives the
+//! lists' reordering and a restart. After each step an inlet row whose upstream-most
+//! particle has moved a spacing Δx into the buffer gets a new particle (a new id) a
+//! spacing behind it; outlet particles past the domain's end are removed with every
+//! particle that leaves the domain.
+
+use crate::case::{Case, OpenKind, Profile};
+use crate::domain::Domain;
+use crate::neighbours::NeighbourList;
+use crate::particles::{Kind, Particles, Vector};
+use crate::physics::eos::LinearEos;
+use crate::scheme::model::{Model, Rates};
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+
+/// The case's buffers, resolved against its domain and particles.
+pub struct OpenBoundaries<const D: usize> {
+    buffers: Vec<Buffer<D>>,
+    dx: f64,
+}
+
+struct Buffer<const D: usize> {
+    axis: usize,
+    /// The domain's end, where inflow enters and outflow leaves.
+    end: f64,
+    /// +1 when the domain lies towards +axis from `end`.
+    inward: f64,
+    width: f64,
+    flow: Flow<D>,
+}
+
+enum Flow<const D: usize> {
+    Inflow {
+        velocity: Vector<D>,
+        /// The profile's span across the section: `(lo, hi)` per axis.
+        profile: Option<(Vector<D>, Vector<D>)>,
+        ramp: f64,
+    },
+    Outflow {
+        density: f64,
+    },
+}
+
+impl<const D: usize> Buffer<D> {
+    /// Depth of `x` into the domain from its end, along the axis.
+    fn depth(&self, x: &Vector<D>) -> f64 {
+        (x[self.axis] - self.end) * self.inward
+    }
+
+    fn holds(&self, x: &Vector<D>) -> bool {
+        self.depth(x) <= self.width
+    }
+
+    /// The point mirrored across the buffer's inner face.
+    fn mirror(&self, x: &Vector<D>) -> Vector<D> {
+        let mut m = *x;
+        m[self.axis] = self.end + self.inward * (2.0 * self.width - self.depth(x));
+        m
+    }
+
+    /// The inflow velocity at `x` and time `t`.
+    fn inflow(&self, x: &Vector<D>, t: f64) -> Option<Vector<D>> {
+        let Flow::Inflow {
+            velocity,
+            profile,
+            ramp,
+        } = &self.flow
+        else {
+            return None;
+        };
+        let ramped = if *ramp > 0.0 {
+            (t / ramp).min(1.0)
+        } else {
+            1.0
+        };
+        let shape = profile.map_or(1.0, |(lo, hi)| {
+            (0..D)
+                .filter(|&d| d != self.axis)
+                .map(|d| {
+                    let s = ((x[d] - lo[d]) / (hi[d] - lo[d])).clamp(0.0, 1.0);
+                    4.0 * s * (1.0 - s)
+                })
+                .product()
+        });
+        Some(velocity * (shape * ramped))
+    }
+}
+
+impl<const D: usize> OpenBoundaries<D> {
+    /// The buffers of `case` (validated), `None` when it has none. A parabolic profile
+    /// spans the fluid's section in the buffer, the particles' extent plus Δx/2.
+    pub fn of(case: &Case, particles: &Particles<D>, eos: &LinearEos) -> Option<Self> {
+        let domain = case.domain.as_ref()?;
+        let dx = case.dx();
+        let buffers: Vec<Buffer<D>> = case
+            .open_boundary
+            .iter()
+            .map(|b| {
+                let inward = b.inward();
+                let end = if inward > 0.0 {
+                    domain.lo[b.axis]
+                } else {
+                    domain.hi[b.axis]
+                };
+                let mut buffer = Buffer {
+                    axis: b.axis,
+                    end,
+                    inward,
+                    width: b.width_in(case),
+                    flow: Flow::Outflow { density: 0.0 },
+                };
+                buffer.flow = match b.kind {
+                    OpenKind::Outlet => Flow::Outflow {
+                        density: eos.density(b.pressure.unwrap_or(0.0)),
+                    },
+                    OpenKind::Inlet => Flow::Inflow {
+                        velocity: Vector::from_iterator(b.velocity.iter().flatten().copied()),
+                        profile: (b.profile == Some(Profile::Parabolic))
+                            .then(|| section(&buffer, particles, dx)),
+                        ramp: b.ramp.unwrap_or(0.0),
+                    },
+                };
+                buffer
+            })
+            .collect();
+        (!buffers.is_empty()).then_some(OpenBoundaries { buffers, dx })
+    }
+
+    /// The buffer holding fluid particle `i`, if any.
+    fn buffer_of(&self, p: &Particles<D>, i: usize) -> Option<&Buffer<D>> {
+        (p.kind[i] == Kind::Fluid)
+            .then(|| self.buffers.iter().find(|b| b.holds(&p.x[i])))
+            .flatten()
+    }
+
+    /// Whether fluid particle `i` is in a buffer (its state is set, not integrated).
+    pub fn in_buffer(&self, p: &Particles<D>, i: usize) -> bool {
+        self.buffer_of(p, i).is_some()
+    }
+
+    /// Sets the buffer particles' state before an evaluation at time `t`: inflow
+    /// velocity and extrapolated density at inlets, prescribed density at outlets.
+    pub fn prepare(
+        &self,
+        p: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        model: &dyn Model<D>,
+        t: f64,
+    ) {
+        let state: Vec<Option<(Option<Vector<D>>, f64)>> = (0..p.len())
+            .into_par_iter()
+            .map(|i| {
+                let buffer = self.buffer_of(p, i)?;
+                Some(match buffer.flow {
+                    Flow::Outflow { density } => (None, density),
+                    Flow::Inflow { .. } => {
+                        let m = buffer.mirror(&p.x[i]);
+                        let rho = self.extrapolate(p, list, domain, model, &m);
+                        (buffer.inflow(&p.x[i], t), rho.unwrap_or(p.rho[i]))
+                    }
+                })
+            })
+            .collect();
+        p.u.par_iter_mut()
+            .zip(p.rho.par_iter_mut())
+            .zip(state.par_iter())
+            .for_each(|((u, rho), s)| {
+                if let Some((velocity, density)) = s {
+                    if let Some(v) = velocity {
+                        *u = *v;
+                    }
+                    *rho = *density;
+                }
+            });
+    }
+
+    /// Shepard interpolation of the density of the fluid outside the buffers at `x`.
+    fn extrapolate(
+        &self,
+        p: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        model: &dyn Model<D>,
+        x: &Vector<D>,
+    ) -> Option<f64> {
+        let radius = model.support_radius();
+        let (mut num, mut den) = (0.0, 0.0);
+        list.for_candidates(x, |j| {
+            if p.kind[j] != Kind::Fluid || self.buffers.iter().any(|b| b.holds(&p.x[j])) {
+                return;
+            }
+            let r = domain.separation(x, &p.x[j]).norm();
+            if r < radius {
+                let wv = model.w(r) * p.mass[j] / p.rho[j];
+                num += p.rho[j] * wv;
+                den += wv;
+            }
+        });
+        (den > 0.0).then(|| num / den)
+    }
+
+    /// Zeroes the rates of the buffer particles: their state is what [`Self::prepare`]
+    /// sets, and they move with their velocity.
+    pub fn hold(&self, p: &Particles<D>, rates: &mut Rates<D>) {
+        rates
+            .du
+            .par_iter_mut()
+            .zip(rates.drho.par_iter_mut())
+            .zip(rates.drho_diff.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, ((du, drho), diff))| {
+                if self.in_buffer(p, i) {
+                    (*du, *drho, *diff) = (Vector::zeros(), 0.0, 0.0);
+                }
+            });
+    }
+
+    /// Fills each inlet row up to the domain's end: a row (particles of one
+    /// transverse lattice position) whose upstream-most particle lies a spacing or more
+    /// inside gets new particles a spacing apart behind it, with its velocity and
+    /// density and the mass `ρ Δx^D`. Returns how many were created.
+    pub fn refill(&self, p: &mut Particles<D>) -> usize {
+        let before = p.len();
+        for buffer in &self.buffers {
+            if !matches!(buffer.flow, Flow::Inflow { .. }) {
+                continue;
+            }
+            // the upstream-most particle of each row, by its transverse lattice indices
+            let mut first: BTreeMap<Vec<i64>, usize> = BTreeMap::new();
+            for i in (0..before).filter(|&i| p.kind[i] == Kind::Fluid && buffer.holds(&p.x[i])) {
+                let row: Vec<i64> = (0..D)
+                    .filter(|&d| d != buffer.axis)
+                    .map(|d| (p.x[i][d] / self.dx).floor() as i64)
+                    .collect();
+                let entry = first.entry(row).or_insert(i);
+                if buffer.depth(&p.x[i]) < buffer.depth(&p.x[*entry]) {
+                    *entry = i;
+                }
+            }
+            // a lattice cell's worth of fluid at the buffer's density: the mass flux
+            // in is ρ_b u, as the prescribed velocity at that density makes it
+            let cell = self.dx.powi(D as i32);
+            for &i in first.values() {
+                let mut x = p.x[i];
+                while buffer.depth(&x) >= self.dx {
+                    x[buffer.axis] -= buffer.inward * self.dx;
+                    let (u, rho) = (p.u[i], p.rho[i]);
+                    p.push(Kind::Fluid, x, u, rho, rho * cell);
+                }
+            }
+        }
+        p.len() - before
+    }
+}
+
+/// The fluid's section in the buffer: the particles' transverse extent, widened by
+/// Δx/2 to the faces of the lattice cells they stand in.
+fn section<const D: usize>(
+    buffer: &Buffer<D>,
+    p: &Particles<D>,
+    dx: f64,
+) -> (Vector<D>, Vector<D>) {
+    let mut lo = Vector::<D>::repeat(f64::INFINITY);
+    let mut hi = Vector::<D>::repeat(f64::NEG_INFINITY);
+    for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid && buffer.holds(&p.x[i])) {
+        lo = lo.inf(&p.x[i]);
+        hi = hi.sup(&p.x[i]);
+    }
+    (lo.add_scalar(-0.5 * dx), hi.add_scalar(0.5 * dx))
+}

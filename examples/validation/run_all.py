@@ -125,15 +125,21 @@ def save_signals(out, signals):
     (out / SIGNALS).write_text(json.dumps(stored))
 
 
+def write_csv(out, rows):
+    """`results.csv`: every row so far (rewritten after each run, so that an
+    interrupted record keeps what it ran for --resume)."""
+    with open(out / "results.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 def main():
     args = arguments()
     args.out.mkdir(parents=True, exist_ok=True)
     chosen = [c for c in CASES if not args.cases or c.name in args.cases]
     done, signals = earlier_results(args.out) if args.resume else ({}, {})
     rows, skipped = [], []
-    csv_file = open(args.out / "results.csv", "w", newline="")
-    writer = csv.DictWriter(csv_file, fieldnames=COLUMNS)
-    writer.writeheader()
     for case in chosen:
         cap = cap_for(case, args)
         for diffusion, integrator in case.variants[args.mode]:
@@ -154,15 +160,13 @@ def main():
                         signals[key] = metrics["signal"]
                         save_signals(args.out, signals)
                 rows.append(row)
-                writer.writerow(row)
-                csv_file.flush()
+                write_csv(args.out, rows)
                 if row["stable"]:
                     previous = row
                 print(f"{case.name:20s} {diffusion:8s} {integrator:4s} {n:>6} "
                       f"{row['particles']:>7} particles {row['wall_s']:8.2f} s "
                       f"error {row['error']:.4g} {'' if row['stable'] else '(blew up)'}",
                       flush=True)
-    csv_file.close()
     stepping = sum(r["wall_s"] for r in rows)
     report.write(args.out, args.mode, chosen, rows, signals, skipped, stepping)
     print(f"{len(rows)} runs, {stepping:.0f} s of stepping; report in {args.out / 'README.md'}")

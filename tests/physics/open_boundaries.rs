@@ -181,6 +181,30 @@ fn stream(boundaries: &str, domain: &str) -> String {
 
 const DOMAIN: &str = "[domain]\nlo = [0.0, 0.0]\nhi = [1.0, 0.8]\nperiodic = [false, true]\n";
 const INLET: &str = "[[open_boundary]]\ntype = \"inlet\"\naxis = 0\nside = \"lo\"\n";
+/// A wall box at the inlet end of the stream, 0.3 m up.
+const WALL: &str = "[[wall]]\nlo = [0.0, 0.3]\nhi = [0.2, 0.5]\n";
+
+/// The stream's fluid in two blocks, below and above [`WALL`]'s height.
+fn around_a_wall(text: String) -> String {
+    text.replace(
+        "lo = [0.0, 0.0]\nhi = [1.0, 0.8]\nvelocity = [1.0, 0.0]\nhydrostatic = false\n",
+        "lo = [0.0, 0.0]\nhi = [1.0, 0.3]\nvelocity = [1.0, 0.0]\nhydrostatic = false\n\
+         [[fluid_block]]\nlo = [0.0, 0.5]\nhi = [1.0, 0.8]\nvelocity = [1.0, 0.0]\n\
+         hydrostatic = false\n",
+    )
+}
+
+/// A tank around the stream's fluid, with its `open` faces, inside a larger domain,
+/// drained by an outlet at the domain's +x end.
+fn enclosed(open: &str) -> String {
+    stream(
+        &format!(
+            "[[tank]]\nlo = [0.0, 0.0]\nhi = [1.0, 0.8]\nopen = [{open}]\n[domain]\n\
+             lo = [-0.5, -0.5]\nhi = [2.0, 1.5]\n{OUTLET}"
+        ),
+        "",
+    )
+}
 const OUTLET: &str = "[[open_boundary]]\ntype = \"outlet\"\naxis = 0\nside = \"hi\"\n";
 
 /// A run restarted half-way continues the uninterrupted one bit for bit, particles
@@ -243,6 +267,26 @@ fn bad_open_boundaries_are_refused_in_one_line() {
             stream(INLET, DOMAIN),
             "open_boundary[0].velocity = (not set)",
         ),
+        (
+            stream(&format!("{inlet}section = [[0.1, 0.3], [0.0, 1.0]]\n"), DOMAIN),
+            "open_boundary[0].section = [[0.1, 0.3], [0.0, 1.0]]: expected 1 [lo, hi] interval(s)",
+        ),
+        (
+            stream(&format!("{inlet}section = [[0.5, 0.9]]\n"), DOMAIN),
+            "open_boundary[0].section[0] = [0.5, 0.9]: expected an interval lo < hi along axis 1 within the domain, [0, 0.8]",
+        ),
+        (
+            stream(&inlet, DOMAIN).replace("lo = [0.0, 0.0]\nhi = [1.0, 0.8]\nvelocity", "lo = [0.5, 0.0]\nhi = [1.0, 0.8]\nvelocity"),
+            "open_boundary[0] = no fluid in the inlet's buffer: expected a buffer covered by a fluid block",
+        ),
+        (
+            around_a_wall(stream(&format!("{inlet}{WALL}"), DOMAIN)),
+            "open_boundary[0] = a wall particle at [0.025, 0.325] inside the inlet: expected an inlet free of walls",
+        ),
+        (
+            enclosed(""),
+            "open_boundary[0] = no way from the fluid to the outlet: expected an outlet the fluid can reach",
+        ),
     ];
     for (text, expected) in cases {
         let e = match Case::from_toml_str(&text) {
@@ -254,5 +298,12 @@ fn bad_open_boundaries_are_refused_in_one_line() {
         };
         assert_eq!(e.lines().count(), 1, "{e}");
         assert!(e.contains(expected), "{e}\n expected: {expected}");
+    }
+    // the tank opened at its outlet side, and a wall beside an inlet's section, pass
+    let open = enclosed("\"+x\"");
+    let beside = around_a_wall(stream(&format!("{inlet}section = [[0.0, 0.3]]\n{WALL}"), DOMAIN));
+    for text in [open, beside] {
+        let case = Case::from_toml_str(&text).unwrap_or_else(|e| panic!("{e}"));
+        Simulation::<2>::new(case).unwrap_or_else(|e| panic!("{e}\n{text}"));
     }
 }

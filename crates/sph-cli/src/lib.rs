@@ -223,8 +223,11 @@ fn check(path: &Path) -> Result<()> {
 /// The particle counts, and the report of what each region built.
 fn describe<const D: usize>(case: &Case) -> Result<(String, String)> {
     let setup = sph_core::geometry::build::<D>(case)?;
-    let report = setup.report(case.dx(), case.support());
+    let mut report = setup.report(case.dx(), case.support());
     let sim = Simulation::<D>::new(case.clone())?;
+    if let Some(open) = sim.open_boundaries() {
+        report.push_str(&open.describe(sim.particles()));
+    }
     let (fluid, all) = (sim.n_fluid(), sim.particles().len());
     let summary = format!("{fluid} fluid and {} wall particles", all - fluid);
     Ok((summary, report))

@@ -55,6 +55,11 @@ pub struct OpenBoundaryConfig {
     pub axis: usize,
     /// Which end of the domain (`lo` or `hi`) along the axis.
     pub side: Side,
+    /// The buffer's cross-section, one `[lo, hi]` interval [m] per transverse axis in
+    /// axis order (one in 2D, two in 3D): a jet's nozzle on part of the domain's end.
+    /// Default: the whole end.
+    #[serde(default)]
+    pub section: Option<Vec<[f64; 2]>>,
     /// Buffer width [m], at least the kernel support R. Default: R rounded up to whole
     /// spacings.
     #[serde(default)]
@@ -135,7 +140,45 @@ impl Case {
                 format!("a buffer narrower than half the domain ({length} m along the axis)"),
             ));
         }
+        if let Some(section) = &b.section {
+            self.check_section(&key, b.axis, section, domain)?;
+        }
         self.check_open_kind_keys(&key, b)
+    }
+
+    /// A section is one interval `lo < hi` per transverse axis, within the domain.
+    fn check_section(
+        &self,
+        key: &str,
+        axis: usize,
+        section: &[[f64; 2]],
+        domain: &super::schema::DomainConfig,
+    ) -> Result<()> {
+        let d = self.dimension;
+        let key = format!("{key}.section");
+        if section.len() != d - 1 {
+            return Err(SphError::invalid(
+                key,
+                format!("{section:?}"),
+                format!("{} [lo, hi] interval(s), one per axis across the flow", d - 1),
+            ));
+        }
+        let across = (0..d).filter(|&a| a != axis);
+        for (k, ([lo, hi], a)) in section.iter().zip(across).enumerate() {
+            finite(&format!("{key}[{k}]"), *lo)?;
+            finite(&format!("{key}[{k}]"), *hi)?;
+            if !(lo < hi && *lo >= domain.lo[a] && *hi <= domain.hi[a]) {
+                return Err(SphError::invalid(
+                    format!("{key}[{k}]"),
+                    format!("[{lo}, {hi}]"),
+                    format!(
+                        "an interval lo < hi along axis {a} within the domain, [{}, {}]",
+                        domain.lo[a], domain.hi[a]
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Inlets take a velocity (into the domain), a profile and a ramp; outlets a

@@ -141,7 +141,7 @@ impl<const D: usize> Simulation<D> {
             .map(|s| Sensor::new(s, case.dx(), case.series_interval()))
             .collect();
         check_inflow_speeds(&case, setup.eos.c0)?;
-        let open = OpenBoundaries::of(&case, &setup.particles, &setup.eos);
+        let open = OpenBoundaries::of(&case, &setup.particles, &setup.domain, &setup.eos)?;
         let mut sim = Self {
             case,
             particles: setup.particles,
@@ -168,6 +168,11 @@ impl<const D: usize> Simulation<D> {
 
     pub fn case(&self) -> &Case {
         &self.case
+    }
+
+    /// The case's inflow and outflow buffers, if it has any.
+    pub fn open_boundaries(&self) -> Option<&OpenBoundaries<D>> {
+        self.open.as_ref()
     }
 
     /// Moves the end time (`time.end`) to `end`, as the command line's `--until` does.

@@ -2,7 +2,7 @@
 //! the mirrored extrapolation of Tafuni et al. 2018, CMAME 342:604).
 //!
 //! A buffer is the slab of the domain within `width ≥ R` of one of its ends along an
-//! open axis. Its particles are fluid particles that take part in every pair sum (so
+//! open axis, over the whole end or over a `section` of it (a jet's nozzle). Its particles are fluid particles that take part in every pair sum (so
 //! the fluid next to the buffer sees a full kernel support), but whose state is set
 //! rather than integrated:
 //! - **inlet**: velocity prescribed, `u = U f(s) min(t/T, 1)` (profile f, ramp T, held
@@ -17,8 +17,14 @@
 //! particle has moved a spacing Δx into the buffer gets a new particle (a new id) a
 //! spacing behind it; outlet particles past the domain's end are removed with every
 //! particle that leaves the domain.
+//!
+//! The start is checked ([`checks`]): an inlet holds fluid and no wall, an outlet can
+//! be reached by the fluid.
+
+mod checks;
 
 use crate::case::{Case, OpenKind, Profile};
+use crate::error::Result;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
@@ -40,6 +46,10 @@ struct Buffer<const D: usize> {
     /// +1 when the domain lies towards +axis from `end`.
     inward: f64,
     width: f64,
+    /// The section's bounds across the flow (infinite along `axis` and where the
+    /// buffer spans the whole end).
+    lo: Vector<D>,
+    hi: Vector<D>,
     flow: Flow<D>,
 }
 
@@ -62,7 +72,7 @@ impl<const D: usize> Buffer<D> {
     }
 
     fn holds(&self, x: &Vector<D>) -> bool {
-        self.depth(x) <= self.width
+        self.depth(x) <= self.width && (0..D).all(|d| self.lo[d] <= x[d] && x[d] <= self.hi[d])
     }
 
     /// The point mirrored across the buffer's inner face.
@@ -101,10 +111,18 @@ impl<const D: usize> Buffer<D> {
 }
 
 impl<const D: usize> OpenBoundaries<D> {
-    /// The buffers of `case` (validated), `None` when it has none. A parabolic profile
-    /// spans the fluid's section in the buffer, the particles' extent plus Δx/2.
-    pub fn of(case: &Case, particles: &Particles<D>, eos: &LinearEos) -> Option<Self> {
-        let domain = case.domain.as_ref()?;
+    /// The buffers of `case` (validated), `None` when it has none; an error when an
+    /// inlet holds no fluid or a wall, or the fluid cannot reach an outlet. A parabolic
+    /// profile spans the fluid's section in the buffer, the particles' extent plus Δx/2.
+    pub fn of(
+        case: &Case,
+        particles: &Particles<D>,
+        domain: &Domain<D>,
+        eos: &LinearEos,
+    ) -> Result<Option<Self>> {
+        if case.open_boundary.is_empty() {
+            return Ok(None);
+        }
         let dx = case.dx();
         let buffers: Vec<Buffer<D>> = case
             .open_boundary
@@ -116,11 +134,21 @@ impl<const D: usize> OpenBoundaries<D> {
                 } else {
                     domain.hi[b.axis]
                 };
+                let (mut lo, mut hi) = (
+                    Vector::<D>::repeat(f64::NEG_INFINITY),
+                    Vector::<D>::repeat(f64::INFINITY),
+                );
+                let across = (0..D).filter(|&d| d != b.axis);
+                for (d, [l, h]) in across.zip(b.section.iter().flatten()) {
+                    (lo[d], hi[d]) = (*l, *h);
+                }
                 let mut buffer = Buffer {
                     axis: b.axis,
                     end,
                     inward,
                     width: b.width_in(case),
+                    lo,
+                    hi,
                     flow: Flow::Outflow { density: 0.0 },
                 };
                 buffer.flow = match b.kind {
@@ -137,7 +165,9 @@ impl<const D: usize> OpenBoundaries<D> {
                 buffer
             })
             .collect();
-        (!buffers.is_empty()).then_some(OpenBoundaries { buffers, dx })
+        let open = OpenBoundaries { buffers, dx };
+        open.check_start(particles, domain)?;
+        Ok(Some(open))
     }
 
     /// The buffer holding fluid particle `i`, if any.
@@ -150,6 +180,28 @@ impl<const D: usize> OpenBoundaries<D> {
     /// Whether fluid particle `i` is in a buffer (its state is set, not integrated).
     pub fn in_buffer(&self, p: &Particles<D>, i: usize) -> bool {
         self.buffer_of(p, i).is_some()
+    }
+
+    /// One line per buffer: its kind, where it is, its width and how many particles
+    /// it holds now.
+    pub fn describe(&self, p: &Particles<D>) -> String {
+        let axes = ["x", "y", "z"];
+        let mut text = String::new();
+        for (k, b) in self.buffers.iter().enumerate() {
+            let count = (0..p.len())
+                .filter(|&i| p.kind[i] == Kind::Fluid && b.holds(&p.x[i]))
+                .count();
+            let kind = match b.flow {
+                Flow::Inflow { .. } => "inlet",
+                Flow::Outflow { .. } => "outlet",
+            };
+            let side = if b.inward > 0.0 { "lo" } else { "hi" };
+            text.push_str(&format!(
+                "  open_boundary[{k}]         {kind:<6} at {} {side} = {}: {} m wide, {count} particles\n",
+                axes[b.axis], b.end, b.width
+            ));
+        }
+        text
     }
 
     /// Sets the buffer particles' state before an evaluation at time `t`: inflow

@@ -61,7 +61,7 @@ pub struct OpenBoundaryConfig {
     #[serde(default)]
     pub section: Option<Vec<[f64; 2]>>,
     /// Buffer width [m], at least the kernel support R. Default: R rounded up to whole
-    /// spacings.
+    /// spacings, plus one (the outermost layer is refilled at the lists' rebuilds).
     #[serde(default)]
     pub width: Option<f64>,
     /// Inflow velocity [m/s] (inlets only), pointing into the domain.
@@ -79,10 +79,10 @@ pub struct OpenBoundaryConfig {
 }
 
 impl OpenBoundaryConfig {
-    /// The buffer width in force: as given, or R rounded up to whole spacings.
+    /// The buffer width in force: as given, or R rounded up to whole spacings plus one.
     pub fn width_in(&self, case: &Case) -> f64 {
         self.width
-            .unwrap_or_else(|| (case.support() / case.dx() - 1e-9).ceil() * case.dx())
+            .unwrap_or_else(|| ((case.support() / case.dx() - 1e-9).ceil() + 1.0) * case.dx())
     }
 
     /// +1 when the flow enters the domain along +axis at this end, -1 otherwise.

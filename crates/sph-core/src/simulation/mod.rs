@@ -395,7 +395,12 @@ impl<const D: usize> Simulation<D> {
             .reach(self.control.acoustic(), speed)
             .max(0.5 * MIN_SKIN * support);
         let mut moved = self.list.max_displacement(&self.particles.x, &self.domain);
-        if moved + reach > 0.5 * self.list.skin() {
+        let due = moved + reach > 0.5 * self.list.skin();
+        let refill_due = (self.open.as_ref()).is_some_and(|o| o.refill_due(&self.particles));
+        if due || refill_due {
+            // particles enter and leave when the lists are rebuilt anyway
+            self.remove_escaped();
+            self.refill();
             self.rebuild(reach);
             moved = 0.0;
         }
@@ -448,33 +453,25 @@ impl<const D: usize> Simulation<D> {
         if let Some(b) = self.budget.as_mut() {
             b.pending = dt;
         }
-        let removed = self.remove_escaped();
-        let created = self.refill();
-        if removed || created {
-            let reach = self.reach(self.control.acoustic(), self.max_speed());
-            self.rebuild(reach);
-        }
         self.check_stability()
     }
 
-    /// Creates the particles that enter at inlets (see [`OpenBoundaries::refill`]);
-    /// whether there were any.
-    fn refill(&mut self) -> bool {
+    /// Creates the particles that enter at inlets (see [`OpenBoundaries::refill`]).
+    fn refill(&mut self) {
         let Some(open) = &self.open else {
-            return false;
+            return;
         };
         let created = open.refill(&mut self.particles);
         if let Some(v) = self.shift_velocity.as_mut() {
             v.resize(self.particles.len(), Vector::zeros());
         }
         self.counters.created += created as u64;
-        created > 0
     }
 
     /// Removes the fluid particles that left the domain along an open direction (their
-    /// energy goes to the budget's `removed_energy`); whether any did (the lists then
-    /// need a rebuild).
-    fn remove_escaped(&mut self) -> bool {
+    /// energy goes to the budget's `removed_energy`), before a list rebuild: until then
+    /// they move on with the flow beyond the domain's bounds.
+    fn remove_escaped(&mut self) {
         let (p, domain) = (&self.particles, &self.domain);
         let keep: Vec<bool> = (0..p.len())
             .into_par_iter()
@@ -482,7 +479,7 @@ impl<const D: usize> Simulation<D> {
             .collect();
         let gone = keep.iter().filter(|&&k| !k).count();
         if gone == 0 {
-            return false;
+            return;
         }
         if let Some(b) = self.budget.as_mut() {
             let ph = self.model.physics();
@@ -495,7 +492,6 @@ impl<const D: usize> Simulation<D> {
             crate::particles::retain(v, &keep);
         }
         self.counters.removed += gone as u64;
-        true
     }
 
     /// Why the energy budget of this case does not close, when it does not: terms that

@@ -13,10 +13,13 @@
 //!   the velocity a particle had when it entered, kept.
 //!
 //! Membership is by position, so it needs no per-particle flag and survives the
-//! lists' reordering and a restart. After each step an inlet row whose upstream-most
-//! particle has moved a spacing Δx into the buffer gets a new particle (a new id) a
-//! spacing behind it; outlet particles past the domain's end are removed with every
-//! particle that leaves the domain.
+//! lists' reordering and a restart. Particles enter and leave when the neighbour
+//! lists are rebuilt (every few steps): then an inlet row whose upstream-most particle
+//! has moved a spacing Δx into the buffer gets a new particle (a new id) a spacing
+//! behind it, and outlet particles past the domain's end are removed with every
+//! particle that has left the domain. A row two spacings short is refilled at once,
+//! with a rebuild; the default width, R plus a spacing, keeps the fluid's support in
+//! the buffer full meanwhile.
 //!
 //! The start is checked ([`checks`]): an inlet holds fluid and no wall, an outlet can
 //! be reached by the fluid.
@@ -282,32 +285,28 @@ impl<const D: usize> OpenBoundaries<D> {
             });
     }
 
+    /// Whether an inlet row's upstream-most particle lies two spacings or more inside
+    /// the domain's end: the buffer's outer layers then need [`Self::refill`] before
+    /// the next step, without waiting for the next neighbour-list build.
+    pub fn refill_due(&self, p: &Particles<D>) -> bool {
+        self.inlets().any(|buffer| {
+            rows(buffer, p, self.dx)
+                .values()
+                .any(|&i| buffer.depth(&p.x[i]) >= 2.0 * self.dx)
+        })
+    }
+
     /// Fills each inlet row up to the domain's end: a row (particles of one
     /// transverse lattice position) whose upstream-most particle lies a spacing or more
     /// inside gets new particles a spacing apart behind it, with its velocity and
     /// density and the mass `ρ Δx^D`. Returns how many were created.
     pub fn refill(&self, p: &mut Particles<D>) -> usize {
         let before = p.len();
-        for buffer in &self.buffers {
-            if !matches!(buffer.flow, Flow::Inflow { .. }) {
-                continue;
-            }
-            // the upstream-most particle of each row, by its transverse lattice indices
-            let mut first: BTreeMap<Vec<i64>, usize> = BTreeMap::new();
-            for i in (0..before).filter(|&i| p.kind[i] == Kind::Fluid && buffer.holds(&p.x[i])) {
-                let row: Vec<i64> = (0..D)
-                    .filter(|&d| d != buffer.axis)
-                    .map(|d| (p.x[i][d] / self.dx).floor() as i64)
-                    .collect();
-                let entry = first.entry(row).or_insert(i);
-                if buffer.depth(&p.x[i]) < buffer.depth(&p.x[*entry]) {
-                    *entry = i;
-                }
-            }
+        for buffer in self.inlets() {
             // a lattice cell's worth of fluid at the buffer's density: the mass flux
             // in is ρ_b u, as the prescribed velocity at that density makes it
             let cell = self.dx.powi(D as i32);
-            for &i in first.values() {
+            for i in rows(buffer, p, self.dx).into_values() {
                 let mut x = p.x[i];
                 while buffer.depth(&x) >= self.dx {
                     x[buffer.axis] -= buffer.inward * self.dx;
@@ -318,6 +317,27 @@ impl<const D: usize> OpenBoundaries<D> {
         }
         p.len() - before
     }
+
+    fn inlets(&self) -> impl Iterator<Item = &Buffer<D>> {
+        (self.buffers.iter()).filter(|b| matches!(b.flow, Flow::Inflow { .. }))
+    }
+}
+
+/// The upstream-most particle of each row of `buffer`, by the row's transverse
+/// lattice indices.
+fn rows<const D: usize>(buffer: &Buffer<D>, p: &Particles<D>, dx: f64) -> BTreeMap<Vec<i64>, usize> {
+    let mut first: BTreeMap<Vec<i64>, usize> = BTreeMap::new();
+    for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid && buffer.holds(&p.x[i])) {
+        let row: Vec<i64> = (0..D)
+            .filter(|&d| d != buffer.axis)
+            .map(|d| (p.x[i][d] / dx).floor() as i64)
+            .collect();
+        let entry = first.entry(row).or_insert(i);
+        if buffer.depth(&p.x[i]) < buffer.depth(&p.x[*entry]) {
+            *entry = i;
+        }
+    }
+    first
 }
 
 /// The fluid's section in the buffer: the particles' transverse extent, widened by

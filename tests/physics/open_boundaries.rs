@@ -301,7 +301,10 @@ fn bad_open_boundaries_are_refused_in_one_line() {
     }
     // the tank opened at its outlet side, and a wall beside an inlet's section, pass
     let open = enclosed("\"+x\"");
-    let beside = around_a_wall(stream(&format!("{inlet}section = [[0.0, 0.3]]\n{WALL}"), DOMAIN));
+    let beside = around_a_wall(stream(
+        &format!("{inlet}section = [[0.0, 0.3]]\n{WALL}"),
+        DOMAIN,
+    ));
     for text in [open, beside] {
         let case = Case::from_toml_str(&text).unwrap_or_else(|e| panic!("{e}"));
         Simulation::<2>::new(case).unwrap_or_else(|e| panic!("{e}\n{text}"));

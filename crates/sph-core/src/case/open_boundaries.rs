@@ -160,7 +160,10 @@ impl Case {
             return Err(SphError::invalid(
                 key,
                 format!("{section:?}"),
-                format!("{} [lo, hi] interval(s), one per axis across the flow", d - 1),
+                format!(
+                    "{} [lo, hi] interval(s), one per axis across the flow",
+                    d - 1
+                ),
             ));
         }
         let across = (0..d).filter(|&a| a != axis);

@@ -32,12 +32,7 @@ fn rounded<const D: usize>(x: &Vector<D>) -> Vec<f64> {
 
 /// An inlet's buffer holds fluid, and no wall particle lies inside the fluid's
 /// section there (walls beside the section, a channel's plates, are allowed).
-fn check_inlet<const D: usize>(
-    key: &str,
-    b: &Buffer<D>,
-    p: &Particles<D>,
-    dx: f64,
-) -> Result<()> {
+fn check_inlet<const D: usize>(key: &str, b: &Buffer<D>, p: &Particles<D>, dx: f64) -> Result<()> {
     let (lo, hi) = super::section(b, p, dx);
     if (0..D).any(|d| lo[d] > hi[d]) {
         return Err(SphError::invalid(
@@ -48,7 +43,8 @@ fn check_inlet<const D: usize>(
         ));
     }
     let across = |x: &Vector<D>| (0..D).all(|d| d == b.axis || (lo[d] < x[d] && x[d] < hi[d]));
-    let wall = (0..p.len()).find(|&i| p.kind[i] == Kind::Wall && b.holds(&p.x[i]) && across(&p.x[i]));
+    let wall =
+        (0..p.len()).find(|&i| p.kind[i] == Kind::Wall && b.holds(&p.x[i]) && across(&p.x[i]));
     match wall {
         Some(i) => Err(SphError::invalid(
             key,
@@ -121,7 +117,8 @@ struct Cells<const D: usize> {
 
 impl<const D: usize> Cells<D> {
     fn new(domain: &Domain<D>, dx: f64) -> Self {
-        let n = std::array::from_fn(|d| (((domain.hi[d] - domain.lo[d]) / dx).ceil() as usize).max(1));
+        let n =
+            std::array::from_fn(|d| (((domain.hi[d] - domain.lo[d]) / dx).ceil() as usize).max(1));
         Self {
             lo: domain.lo,
             dx,

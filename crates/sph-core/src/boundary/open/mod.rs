@@ -27,8 +27,8 @@
 mod checks;
 
 use crate::case::{Case, OpenKind, Profile};
-use crate::error::Result;
 use crate::domain::Domain;
+use crate::error::Result;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
@@ -325,7 +325,11 @@ impl<const D: usize> OpenBoundaries<D> {
 
 /// The upstream-most particle of each row of `buffer`, by the row's transverse
 /// lattice indices.
-fn rows<const D: usize>(buffer: &Buffer<D>, p: &Particles<D>, dx: f64) -> BTreeMap<Vec<i64>, usize> {
+fn rows<const D: usize>(
+    buffer: &Buffer<D>,
+    p: &Particles<D>,
+    dx: f64,
+) -> BTreeMap<Vec<i64>, usize> {
     let mut first: BTreeMap<Vec<i64>, usize> = BTreeMap::new();
     for i in (0..p.len()).filter(|&i| p.kind[i] == Kind::Fluid && buffer.holds(&p.x[i])) {
         let row: Vec<i64> = (0..D)

@@ -12,6 +12,10 @@ Parts (run one with its name, or all by default):
             the same step costs as `variants`, measured in one process (the deltasph
             Python module): the schemes' simulations advance in turns, 10 steps each, so
             that the machine's slow spells fall on all of them alike.
+  open      particle-steps/s of the cylinder in a stream (examples/validation/
+            cylinder.toml, D/Δx = 20, δ+-SPH, 2 threads) fed by its inlet and outlet,
+            against the same particles in a domain periodic both ways driven by a body
+            force (no open boundaries), interleaved as above.
   solution  wall time of examples/dam_break_2d.toml as it stands (output on), and of
             the same case with the symplectic scheme at CFL 0.25 (its default); with --baseline BIN
             the baseline's time too, alternated.
@@ -190,6 +194,34 @@ def interleaved(args):
             print(f"  {label:<26} {1e3 * per_step:7.2f} ms/step  ×{spent[label] / ref:.2f}")
 
 
+def open_boundaries(args):
+    import time
+    import tomllib
+    import deltasph as ds
+
+    os.environ.setdefault("RAYON_NUM_THREADS", "2")
+    with open(ROOT / "examples" / "validation" / "cylinder.toml", "rb") as f:
+        streamed = tomllib.load(f)
+    streamed["time"]["output_interval"] = 0.0
+    periodic = {**streamed, "domain": {**streamed["domain"], "periodic": [True, True]},
+                "fluid": {**streamed["fluid"], "gravity": [0.01, 0.0]}}
+    del periodic["open_boundary"]
+    sims = [(label, ds.Simulation(cfg)) for label, cfg in
+            (("inlet and outlet", streamed), ("periodic, body force", periodic))]
+    block, spent, done = 10, {label: 0.0 for label, _ in sims}, {label: 0.0 for label, _ in sims}
+    for _ in range(args.steps // block):
+        for label, sim in sims:
+            start = time.perf_counter()
+            sim.step(block)
+            spent[label] += time.perf_counter() - start
+            done[label] += block * sim.n_particles
+    print(f"cylinder at D/Δx = 20, δ+-SPH, {os.environ['RAYON_NUM_THREADS']} threads, "
+          f"{args.steps} steps each, interleaved")
+    for label, sim in sims:
+        print(f"  {label:<22} {sim.n_particles} particles  "
+              f"{done[label] / spent[label]:.4g} particle-steps/s")
+
+
 def solution(args):
     print(f"wall time of {EXAMPLE.relative_to(ROOT)} to its end (output on), 2 threads")
     symplectic = set_key(set_key(BASE_2D, "integrator", '"symplectic"', "scheme"),
@@ -220,7 +252,7 @@ def scaling(args):
 
 def main():
     parts = {"evals": evals, "variants": variants, "interleaved": interleaved,
-             "solution": solution, "scaling": scaling}
+             "open": open_boundaries, "solution": solution, "scaling": scaling}
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("parts", nargs="*", help=" ".join(parts))
     ap.add_argument("--steps", type=int, default=200, help="steps of the fixed-step runs")

@@ -25,10 +25,8 @@ airfoil_forces.png and airfoil_fields.png.
 Usage: python3 examples/validation/airfoil.py [--n 50] [--end 10]
 """
 import argparse
-import csv
 import math
 import pathlib
-import time
 import tomllib
 
 import matplotlib
@@ -36,6 +34,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 import deltasph as ds
+from records import write_csv, write_table
+from sampling import Sampler, body_force
 
 matplotlib.use("Agg")
 
@@ -117,28 +117,21 @@ def disorder(sim):
 def run(n, end, tic):
     sim = ds.Simulation(config(n, end, tic))
     forces, measures = [], []
-    start = time.perf_counter()
-    particle_steps = 0.0
-    for k in range(1, round(end / 0.02) + 1):
-        t = 0.02 * k
-        while sim.time < t * (1 - 1e-12):
-            sim.step()
-            particle_steps += sim.n_particles
-        load = sim.loads()["airfoil"]
-        force = np.asarray(load["pressure"]) + np.asarray(load["viscous"])
+    sampler = Sampler(sim, end, 0.02)
+    for t in sampler:
+        force = body_force(sim, "airfoil")
         forces.append((sim.time, force[0] / Q, force[1] / Q))
         if any(abs(t - s) < 1e-9 for s in SAMPLES):
             measures.append(disorder(sim))
             print(f"  TIC {tic}: t = {sim.time:.1f}, C_D {force[0] / Q:.3f}, "
-                  f"C_L {force[1] / Q:.3f}, disorder {measures[-1]}, "
-                  f"{time.perf_counter() - start:.0f} s", flush=True)
-    wall = time.perf_counter() - start
+                  f"C_L {force[1] / Q:.3f}, disorder {measures[-1]}, {sampler.wall:.0f} s",
+                  flush=True)
     forces = np.array(forces)
     late = forces[:, 0] >= FROM - 1e-9
     m = np.nanmean(np.array(measures, dtype=float), axis=0)
     return {
         "tic": tic, "n": n, "particles": sim.n_particles, "steps": sim.n_steps,
-        "wall_s": wall, "particle_steps_per_s": particle_steps / wall,
+        "wall_s": sampler.wall, "particle_steps_per_s": sampler.rate,
         "cd": float(forces[late, 1].mean()), "cl": float(forces[late, 2].mean()),
         "spread": m[0], "empty_disc": m[1], "empty_cells": m[2], "region": m[3],
         "forces": forces, "sim": sim,
@@ -150,22 +143,15 @@ COLUMNS = ["tic", "n", "particles", "cd", "cl", "spread", "empty_disc", "empty_c
 
 
 def write(results):
-    with open(OUT / "airfoil.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for r in results:
-            w.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c] for c in COLUMNS])
-    lines = ["| TIC | c/Δx | particles | C_D | C_L | nearest-neighbour spread | "
-             "largest empty disc [Δx] | empty 2Δx cells | region particles | steps | "
-             "wall [s] | particle-steps/s |", "|" + "---|" * 12]
-    for r in results:
-        lines.append(
-            f"| {'on' if r['tic'] else 'off'} | {r['n']} | {r['particles']} | "
-            f"{r['cd']:.3f} | {r['cl']:.3f} | {r['spread']:.3f} | {r['empty_disc']:.2f} | "
-            f"{r['empty_cells']:.3f} | {r['region']:.0f} | {r['steps']} | "
-            f"{r['wall_s']:.0f} | {r['particle_steps_per_s']:.3g} |")
-    (OUT / "airfoil_table.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_csv(OUT / "airfoil.csv", COLUMNS, results)
+    header = ["TIC", "c/Δx", "particles", "C_D", "C_L", "nearest-neighbour spread",
+              "largest empty disc [Δx]", "empty 2Δx cells", "region particles", "steps",
+              "wall [s]", "particle-steps/s"]
+    rows = [["on" if r["tic"] else "off", f"{r['n']}", f"{r['particles']}", f"{r['cd']:.3f}",
+             f"{r['cl']:.3f}", f"{r['spread']:.3f}", f"{r['empty_disc']:.2f}",
+             f"{r['empty_cells']:.3f}", f"{r['region']:.0f}", f"{r['steps']}",
+             f"{r['wall_s']:.0f}", f"{r['particle_steps_per_s']:.3g}"] for r in results]
+    write_table(OUT / "airfoil_table.md", header, rows)
 
 
 def plot(results):

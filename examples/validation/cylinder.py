@@ -35,11 +35,9 @@ Usage: python3 examples/validation/cylinder.py [--re 100 200] [--n 20 30] [--end
        [--window 25] [--summary]
 """
 import argparse
-import csv
 import json
 import math
 import pathlib
-import time
 import tomllib
 
 import numpy as np
@@ -47,6 +45,8 @@ from scipy.signal import butter, filtfilt
 from scipy.spatial import cKDTree
 
 import deltasph as ds
+from records import write_csv, write_table
+from sampling import Sampler, body_force
 
 HERE = pathlib.Path(__file__).resolve().parent
 OUT = HERE.parents[1] / "docs" / "validation"
@@ -73,21 +73,14 @@ def run(re, n, end):
     simulation."""
     sim = ds.Simulation(config(re, n, end))
     series = []
-    start = time.perf_counter()
-    particle_steps, t = 0.0, 0.0
-    while t < end - 1e-9:
-        t += SAMPLE
-        while sim.time < t * (1 - 1e-12):
-            sim.step()
-            particle_steps += sim.n_particles
-        load = sim.loads()["cylinder"]
-        force = np.asarray(load["pressure"]) + np.asarray(load["viscous"])
+    sampler = Sampler(sim, end, SAMPLE)
+    for _ in sampler:
+        force = body_force(sim, "cylinder")
         series.append((sim.time, force[0] / Q, force[1] / Q))
         if len(series) % 200 == 0:
             print(f"  Re {re} D/Δx {n}: t = {sim.time:.1f}, C_D {force[0] / Q:.3f}, "
-                  f"C_L {force[1] / Q:.3f}, {time.perf_counter() - start:.0f} s", flush=True)
-    wall = time.perf_counter() - start
-    return np.array(series), sim, wall, particle_steps / wall
+                  f"C_L {force[1] / Q:.3f}, {sampler.wall:.0f} s", flush=True)
+    return np.array(series), sim, sampler.wall, sampler.rate
 
 
 def upward_crossings(t, c):
@@ -138,23 +131,17 @@ COLUMNS = ["re", "n", "particles", "steps", "wall_s", "particle_steps_per_s", "p
 
 def write(results):
     OUT.mkdir(parents=True, exist_ok=True)
-    with open(OUT / "cylinder.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for r in results:
-            w.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c] for c in COLUMNS])
-    lines = ["| Re | D/Δx | particles | C_D | C_L' | St | ε | C_D corr. | C_L' corr. | "
-             "St corr. | reference C_D, C_L', St | periods | steps | wall [s] | "
-             "particle-steps/s |", "|" + "---|" * 15]
-    for r in results:
-        ref = ", ".join(f"{v:g}" for v in REFERENCE[r["re"]])
-        lines.append(
-            f"| {r['re']} | {r['n']} | {r['particles']} | {r['cd']:.3f} | {r['cl']:.3f} | "
-            f"{r['st']:.3f} | {r['eps']:.3f} | {r['cd_c']:.3f} | {r['cl_c']:.3f} | "
-            f"{r['st_c']:.3f} | {ref} | {r['periods']} | {r['steps']} | {r['wall_s']:.0f} | "
-            f"{r['particle_steps_per_s']:.3g} |")
-    (OUT / "cylinder_table.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_csv(OUT / "cylinder.csv", COLUMNS, results)
+    header = ["Re", "D/Δx", "particles", "C_D", "C_L'", "St", "ε", "C_D corr.", "C_L' corr.",
+              "St corr.", "reference C_D, C_L', St", "periods", "steps", "wall [s]",
+              "particle-steps/s"]
+    rows = [[f"{r['re']}", f"{r['n']}", f"{r['particles']}", f"{r['cd']:.3f}",
+             f"{r['cl']:.3f}", f"{r['st']:.3f}", f"{r['eps']:.3f}", f"{r['cd_c']:.3f}",
+             f"{r['cl_c']:.3f}", f"{r['st_c']:.3f}",
+             ", ".join(f"{v:g}" for v in REFERENCE[r["re"]]), f"{r['periods']}",
+             f"{r['steps']}", f"{r['wall_s']:.0f}", f"{r['particle_steps_per_s']:.3g}"]
+            for r in results]
+    write_table(OUT / "cylinder_table.md", header, rows)
 
 
 def plot_series(results):

@@ -32,13 +32,14 @@ import argparse
 import csv
 import math
 import pathlib
-import time
 import tomllib
 
 import matplotlib
 import numpy as np
 
 import deltasph as ds
+from records import write_csv, write_table
+from sampling import Sampler, body_force
 
 matplotlib.use("Agg")
 
@@ -106,24 +107,9 @@ def fluxes(sim, x0, e=(1.0, 0.0)):
 def sample(sim, measure):
     """Steps to T_END and calls measure(sim) every SAMPLE over the window: the list of
     what it returned, the wall time and the particle-steps per second."""
-    rows = []
-    start = time.perf_counter()
-    particle_steps, t = 0.0, 0.0
-    while t < T_END - 1e-9:
-        t += SAMPLE
-        while sim.time < t * (1 - 1e-12):
-            sim.step()
-            particle_steps += sim.n_particles
-        if t >= WINDOW[0] - 1e-9:
-            rows.append(measure(sim))
-    wall = time.perf_counter() - start
-    return rows, wall, particle_steps / wall
-
-
-def plate_load(sim):
-    """The fluid's force on the plate, pressure and viscous."""
-    load = sim.loads()["plate"]
-    return np.asarray(load["pressure"]) + np.asarray(load["viscous"])
+    sampler = Sampler(sim, T_END, SAMPLE)
+    rows = [measure(sim) for t in sampler if t >= WINDOW[0] - 1e-9]
+    return rows, sampler.wall, sampler.rate
 
 
 def run(n, scheme):
@@ -132,7 +118,7 @@ def run(n, scheme):
 
     def measure(sim):
         p = np.nan_to_num(sim.probe_pressure(probes))
-        return p, -plate_load(sim)[1], fluxes(sim, FLUX_X), fluxes(sim, -FLUX_X)
+        return p, -body_force(sim, "plate")[1], fluxes(sim, FLUX_X), fluxes(sim, -FLUX_X)
 
     rows, wall, rate = sample(sim, measure)
     p = np.mean([r[0] for r in rows], axis=0)
@@ -188,7 +174,8 @@ def run_oblique(n):
 
     def measure(sim):
         p = np.nan_to_num(sim.probe_pressure(probes))
-        return p, plate_load(sim), fluxes(sim, FLUX_X, along), fluxes(sim, -FLUX_X, along)
+        load = body_force(sim, "plate")
+        return p, load, fluxes(sim, FLUX_X, along), fluxes(sim, -FLUX_X, along)
 
     rows, wall, rate = sample(sim, measure)
     p = np.mean([r[0] for r in rows], axis=0)
@@ -232,12 +219,7 @@ def orders(results):
 
 
 def write(results):
-    with open(OUT / "impinging_jet.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for r in results:
-            w.writerow([r.get(c, "") if not isinstance(r.get(c), float) else f"{r[c]:.5g}"
-                        for c in COLUMNS])
+    write_csv(OUT / "impinging_jet.csv", COLUMNS, results)
     with open(OUT / "impinging_jet_profiles.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["x_over_b", "theory"] + [f"{r['scheme']} {r['n']}" for r in results])
@@ -248,19 +230,17 @@ def write(results):
     def fmt(r, key, digits):
         return f"{r[key]:.{digits}f}" if key in r else "—"
 
-    lines = ["| scheme | b/Δx | p(0)/½ρU² | F/ρU²b | ṁ right, left [ρUb/2] | "
-             "momentum flux right, left [ρU²b/2] | plate RMS vs theory [½ρU²] | its order | "
-             "RMS change from b/Δx/2 | its order | steps | wall [s] | particle-steps/s |",
-             "|" + "---|" * 14]
-    for r in results:
-        lines.append(
-            f"| {r['scheme']} | {r['n']} | {r['p_stag']:.4f} | {r['force']:.4f} | "
-            f"{r['mass_right']:.4f}, {r['mass_left']:.4f} | "
-            f"{r['momentum_right']:.4f}, {r['momentum_left']:.4f} | {r['plate_rms']:.4f} | "
-            f"{fmt(r, 'order_theory', 2)} | {fmt(r, 'change', 4)} | {fmt(r, 'order', 2)} | "
-            f"{r['steps']} | {r['wall_s']:.1f} | {r['particle_steps_per_s']:.3g} |")
-    (OUT / "impinging_jet_table.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    header = ["scheme", "b/Δx", "p(0)/½ρU²", "F/ρU²b", "ṁ right, left [ρUb/2]",
+              "momentum flux right, left [ρU²b/2]", "plate RMS vs theory [½ρU²]",
+              "its order", "RMS change from b/Δx/2", "its order", "steps", "wall [s]",
+              "particle-steps/s"]
+    rows = [[r["scheme"], f"{r['n']}", f"{r['p_stag']:.4f}", f"{r['force']:.4f}",
+             f"{r['mass_right']:.4f}, {r['mass_left']:.4f}",
+             f"{r['momentum_right']:.4f}, {r['momentum_left']:.4f}", f"{r['plate_rms']:.4f}",
+             fmt(r, "order_theory", 2), fmt(r, "change", 4), fmt(r, "order", 2),
+             f"{r['steps']}", f"{r['wall_s']:.1f}", f"{r['particle_steps_per_s']:.3g}"]
+            for r in results]
+    write_table(OUT / "impinging_jet_table.md", header, rows)
 
 
 def plot(results):
@@ -312,22 +292,15 @@ OBLIQUE_COLUMNS = ["n", "p_max", "s_max", "normal_force", "tangential_force", "m
 
 def write_oblique(results):
     """impinging_jet_oblique.csv and its table."""
-    with open(OUT / "impinging_jet_oblique.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(OBLIQUE_COLUMNS)
-        for r in results:
-            w.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c]
-                        for c in OBLIQUE_COLUMNS])
-    lines = ["| b/Δx | max p / ½ρU² | at s/b | F_n / ρU²b sin θ | F_t / ρU²b | "
-             "ṁ down / ρUb(1+cos θ)/2 | ṁ up / ρUb(1-cos θ)/2 | steps | wall [s] | "
-             "particle-steps/s |", "|" + "---|" * 10]
-    for r in results:
-        lines.append(
-            f"| {r['n']} | {r['p_max']:.4f} | {r['s_max']:.2f} | {r['normal_force']:.4f} | "
-            f"{r['tangential_force']:.4f} | {r['mass_down']:.4f} | {r['mass_up']:.4f} | "
-            f"{r['steps']} | {r['wall_s']:.1f} | {r['particle_steps_per_s']:.3g} |")
-    (OUT / "impinging_jet_oblique_table.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_csv(OUT / "impinging_jet_oblique.csv", OBLIQUE_COLUMNS, results)
+    header = ["b/Δx", "max p / ½ρU²", "at s/b", "F_n / ρU²b sin θ", "F_t / ρU²b",
+              "ṁ down / ρUb(1+cos θ)/2", "ṁ up / ρUb(1-cos θ)/2", "steps", "wall [s]",
+              "particle-steps/s"]
+    rows = [[f"{r['n']}", f"{r['p_max']:.4f}", f"{r['s_max']:.2f}", f"{r['normal_force']:.4f}",
+             f"{r['tangential_force']:.4f}", f"{r['mass_down']:.4f}", f"{r['mass_up']:.4f}",
+             f"{r['steps']}", f"{r['wall_s']:.1f}", f"{r['particle_steps_per_s']:.3g}"]
+            for r in results]
+    write_table(OUT / "impinging_jet_oblique_table.md", header, rows)
 
 
 def main():

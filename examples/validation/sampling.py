@@ -1,0 +1,34 @@
+"""Driving a simulation from a study script: steps to each sampling time, the work
+counted, and the loads read."""
+import time
+
+import numpy as np
+
+
+class Sampler:
+    """Iterating steps `sim` to each multiple of `every` up to `end` and yields that time;
+    `wall` is then the wall time so far [s] and `rate` the particle-steps per second."""
+
+    def __init__(self, sim, end, every):
+        self.sim, self.end, self.every = sim, end, every
+        self.wall, self.particle_steps = 0.0, 0.0
+
+    def __iter__(self):
+        start = time.perf_counter()
+        for k in range(1, round(self.end / self.every) + 1):
+            t = self.every * k
+            while self.sim.time < t * (1 - 1e-12):
+                self.sim.step()
+                self.particle_steps += self.sim.n_particles
+            self.wall = time.perf_counter() - start
+            yield t
+
+    @property
+    def rate(self):
+        return self.particle_steps / self.wall
+
+
+def body_force(sim, name):
+    """The fluid's force on the body `name`, pressure and viscous."""
+    load = sim.loads()[name]
+    return np.asarray(load["pressure"]) + np.asarray(load["viscous"])

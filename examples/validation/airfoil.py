@@ -34,7 +34,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 import deltasph as ds
-from records import write_csv, write_table
+from records import plot_forces, write_csv, write_table
 from sampling import Sampler, body_force
 
 matplotlib.use("Agg")
@@ -158,22 +158,9 @@ def plot(results):
     import matplotlib.pyplot as plt
     from cylinder import vorticity
 
-    fig, axes = plt.subplots(2, 1, figsize=(8, 5), sharex=True)
-    for r in results:
-        t, cd, cl = r["forces"].T
-        label = f"TIC {'on' if r['tic'] else 'off'}"
-        axes[0].plot(t, cd, lw=0.8, label=label)
-        axes[1].plot(t, cl, lw=0.8, label=label)
-    axes[0].set_ylabel("C_D")
-    axes[1].set_ylabel("C_L")
-    axes[1].set_xlabel("t U/c")
-    axes[0].legend(fontsize=8)
-    for ax in axes:
-        ax.grid(alpha=0.3)
-    fig.suptitle("NACA0010, α = 30°, Re = 10⁴: drag and lift (pressure + viscous)")
-    fig.tight_layout()
-    fig.savefig(OUT / "airfoil_forces.png", dpi=120)
-    plt.close(fig)
+    curves = [(f"TIC {'on' if r['tic'] else 'off'}", *r["forces"].T) for r in results]
+    plot_forces(OUT / "airfoil_forces.png", curves,
+                "NACA0010, α = 30°, Re = 10⁴: drag and lift (pressure + viscous)", "t U/c")
 
     fig, axes = plt.subplots(len(results), 2, figsize=(12, 3.4 * len(results)),
                              squeeze=False)

@@ -45,7 +45,7 @@ from scipy.signal import butter, filtfilt
 from scipy.spatial import cKDTree
 
 import deltasph as ds
-from records import write_csv, write_table
+from records import plot_forces, write_csv, write_table
 from sampling import Sampler, body_force
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -145,26 +145,13 @@ def write(results):
 
 
 def plot_series(results):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, 1, figsize=(8, 5), sharex=True)
+    curves = []
     for r in results:
         t, cd, cl = np.loadtxt(series_file(r["re"], r["n"]), delimiter=",", skiprows=1).T
-        label = f"Re {r['re']}, D/Δx {r['n']}"
-        axes[0].plot(t, cd, lw=0.8, label=label)
-        axes[1].plot(t, cl, lw=0.8, label=label)
-    axes[0].set_ylabel("C_D")
-    axes[0].set_ylim(0.8, 2.5)
-    axes[1].set_ylabel("C_L")
-    axes[1].set_xlabel("t U/D")
-    axes[0].legend(fontsize=7, ncol=2)
-    for ax in axes:
-        ax.grid(alpha=0.3)
-    fig.suptitle("Cylinder: drag and lift coefficients (pressure + viscous), raw")
-    fig.tight_layout()
-    fig.savefig(OUT / "cylinder_lift.png", dpi=120)
-    plt.close(fig)
+        curves.append((f"Re {r['re']}, D/Δx {r['n']}", t, cd, cl))
+    plot_forces(OUT / "cylinder_lift.png", curves,
+                "Cylinder: drag and lift coefficients (pressure + viscous), raw", "t U/D",
+                drag_limits=(0.8, 2.5))
 
 
 def plot_vorticity(sim, re, n):

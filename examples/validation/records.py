@@ -19,3 +19,27 @@ def write_table(path, header, rows):
     lines += ["| " + " | ".join(row) + " |" for row in rows]
     path.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+def plot_forces(path, curves, title, time_label, drag_limits=None):
+    """Drag and lift coefficients against time, one (label, t, C_D, C_L) a curve, into
+    `path` (PNG)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, 1, figsize=(8, 5), sharex=True)
+    for label, t, cd, cl in curves:
+        axes[0].plot(t, cd, lw=0.8, label=label)
+        axes[1].plot(t, cl, lw=0.8, label=label)
+    axes[0].set_ylabel("C_D")
+    if drag_limits:
+        axes[0].set_ylim(*drag_limits)
+    axes[1].set_ylabel("C_L")
+    axes[1].set_xlabel(time_label)
+    axes[0].legend(fontsize=7, ncol=2)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

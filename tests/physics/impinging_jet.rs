@@ -1,6 +1,6 @@
-//! A plane jet impinging normally on a flat plate, fed by an inlet and leaving the
-//! domain along the plate: the steady stagnation pressure, plate force and outgoing
-//! fluxes of free-streamline theory (examples/validation/impinging_jet.py runs the
+//! A plane jet impinging on a flat plate, normally and at 60°, fed by an inlet and
+//! leaving the domain along the plate: the steady stagnation pressure, plate force and
+//! outgoing fluxes of free-streamline theory and of momentum and Bernoulli (examples/validation/impinging_jet.py runs the
 //! resolution study; docs/validation/impinging_jet.md).
 
 use sph_core::{Case, Kind, Simulation, Vector};

@@ -16,6 +16,10 @@ Parts (run one with its name, or all by default):
             cylinder.toml, D/Δx = 20, δ+-SPH, 2 threads) fed by its inlet and outlet,
             against the same particles in a domain periodic both ways driven by a body
             force (no open boundaries), interleaved as above.
+  les       particle-evaluations/s of the Taylor-Green vortex (examples/
+            les_taylor_green.toml at L/Δx = 100, 10k particles, 2 threads, output off)
+            with δ-SPH, δ+-SPH and δ-LES-SPH, the same physical viscosity and c0, runs
+            alternated.
   solution  wall time of examples/dam_break_2d.toml as it stands (output on), and of
             the same case with the symplectic scheme at CFL 0.25 (its default); with --baseline BIN
             the baseline's time too, alternated.
@@ -222,6 +226,29 @@ def open_boundaries(args):
               f"{done[label] / spent[label]:.4g} particle-steps/s")
 
 
+def les(args):
+    text = quiet((ROOT / "examples" / "les_taylor_green.toml").read_text())
+    text = set_key(text, "spacing", "0.01", "particles")
+    text = set_key(text, "max_steps", str(args.steps), "time")
+    plain = re_scheme(text, 'diffusion = "delta_sph"')
+    cases = [
+        ("δ-SPH", plain),
+        ("δ+-SPH", set_key(plain, "shifting", '"delta_plus"', "scheme")),
+        ("δ-LES-SPH", text),
+    ]
+    res = median_runs([(label, t, CLI) for label, t in cases], args.repeat)
+    print("particle-evaluations/s, Taylor-Green L/Δx = 100 (10k particles), RK4, 2 threads")
+    ref = res["δ-SPH"][1]["pevals"]
+    for label, (wall, r) in res.items():
+        print(f"  {label:<10} {r['pevals']:10.3e}  cost of a step ×{ref / r['pevals']:.2f}")
+
+
+def re_scheme(text, line):
+    """The LES case turned into a δ-SPH case: no closure, `line` in its place."""
+    text = re.sub(r"^turbulence = .*$", line, text, flags=re.M)
+    return re.sub(r"^les_velocity = .*$", "", text, flags=re.M)
+
+
 def solution(args):
     print(f"wall time of {EXAMPLE.relative_to(ROOT)} to its end (output on), 2 threads")
     symplectic = set_key(set_key(BASE_2D, "integrator", '"symplectic"', "scheme"),
@@ -252,7 +279,7 @@ def scaling(args):
 
 def main():
     parts = {"evals": evals, "variants": variants, "interleaved": interleaved,
-             "open": open_boundaries, "solution": solution, "scaling": scaling}
+             "open": open_boundaries, "les": les, "solution": solution, "scaling": scaling}
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("parts", nargs="*", help=" ".join(parts))
     ap.add_argument("--steps", type=int, default=200, help="steps of the fixed-step runs")

@@ -9,7 +9,7 @@ y_t = 5t(0.2969√x − 0.1260x − 0.3516x² + 0.2843x³ − 0.1036x⁴), t = 0
 per side on a cosine spacing, turned nose up by α about the mid-chord; the script writes
 it to examples/validation/naca0010_a30.txt (a vertex list) before it runs.
 
-At the samples t = 4, 5, ..., 10 c/U, in the negative-pressure region behind the profile
+At the samples t = 2, 3, ..., 6 c/U, in the negative-pressure region behind the profile
 (points within 1.5c of the mid-chord, downstream of the leading edge, more than 2Δx from
 the wall, whose nearest particle has p < 0), the script measures:
 - the nearest-neighbour spread: the standard deviation of the particles' nearest-
@@ -18,13 +18,19 @@ the wall, whose nearest particle has p < 0), the script measures:
   to its nearest particle, in Δx (≈ 0.7 on a lattice);
 - the empty cells: the fraction of 2Δx cells of the region holding no particle (0 on a
   lattice);
-and over t = 4-10 c/U the mean lift and drag coefficients (pressure and viscous loads on
+and over t = 2-6 c/U the mean lift and drag coefficients (pressure and viscous loads on
 the profile, ½ρ0U²c). Writes docs/validation/airfoil.csv, airfoil_table.md,
 airfoil_forces.png and airfoil_fields.png.
 
-Usage: python3 examples/validation/airfoil.py [--n 50] [--end 10]
+Each run writes its record (docs/validation/airfoil_tic_<off|on>.json) and its last
+fields (.npz); a run that goes unstable stops there and its record says when and where.
+The two runs can go to separate processes (`--tic off`, `--tic on`, RAYON_NUM_THREADS=1
+each); `--summary` then builds the table and the plots.
+
+Usage: python3 examples/validation/airfoil.py [--n 50] [--end 6] [--tic off on] [--summary]
 """
 import argparse
+import json
 import math
 import pathlib
 import tomllib
@@ -35,6 +41,7 @@ from scipy.spatial import cKDTree
 
 import deltasph as ds
 from records import plot_forces, write_csv, write_table
+from cylinder import vorticity
 from sampling import Sampler, body_force
 
 matplotlib.use("Agg")
@@ -45,8 +52,10 @@ OUTLINE = HERE / "naca0010_a30.txt"
 ALPHA = math.radians(30.0)
 THICKNESS = 0.10
 Q = 0.5  # ½ρ0U²c
-SAMPLES = [4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0]
-FROM = 4.0
+U = 1.0
+RAMP = 1.0  # the start's ramp time [c/U]
+SAMPLES = [2.0, 3.0, 4.0, 5.0, 6.0]
+FROM = 2.0
 
 
 def naca_outline(points=120):
@@ -82,6 +91,22 @@ def config(n, end, tic):
     return cfg
 
 
+def drive(sim):
+    """The stream, driven by a uniform body force: after every step, every fluid particle
+    gets the same velocity increment that brings the fluid's mean velocity to
+    U min(t/RAMP, 1). This is the frame of a profile accelerated smoothly from rest
+    through still water and then towed at U; in the doubly periodic domain the mean
+    pressure is held by the fluid's mass, as in a closed tank, so a void cannot open
+    at no cost. Returns the after-step hook for `Sampler`."""
+    def accelerate(before):
+        u = sim.velocities
+        fluid = sim.kind == ds.FLUID
+        target = U * min(sim.time / RAMP, 1.0)
+        u[fluid, 0] += target - u[fluid, 0].mean()
+        sim.set_velocities(u)
+    return accelerate
+
+
 def disorder(sim):
     """(nearest-neighbour spread, largest empty disc [Δx], empty 2Δx cells) in the
     negative-pressure region behind the profile."""
@@ -115,86 +140,110 @@ def disorder(sim):
 
 
 def run(n, end, tic):
+    """One run; a run that goes unstable ends there, and its record says when and where."""
     sim = ds.Simulation(config(n, end, tic))
-    forces, measures = [], []
-    sampler = Sampler(sim, end, 0.02)
-    for t in sampler:
-        force = body_force(sim, "airfoil")
-        forces.append((sim.time, force[0] / Q, force[1] / Q))
-        if any(abs(t - s) < 1e-9 for s in SAMPLES):
-            measures.append(disorder(sim))
-            print(f"  TIC {tic}: t = {sim.time:.1f}, C_D {force[0] / Q:.3f}, "
-                  f"C_L {force[1] / Q:.3f}, disorder {measures[-1]}, {sampler.wall:.0f} s",
-                  flush=True)
+    forces, measures, stopped = [], [], ""
+    sampler = Sampler(sim, end, 0.02, after_step=drive(sim))
+    try:
+        for t in sampler:
+            force = body_force(sim, "airfoil")
+            forces.append((sim.time, force[0] / Q, force[1] / Q))
+            if any(abs(t - s) < 1e-9 for s in SAMPLES):
+                measures.append(disorder(sim))
+                print(f"  TIC {tic}: t = {sim.time:.1f}, C_D {force[0] / Q:.3f}, "
+                      f"C_L {force[1] / Q:.3f}, disorder {measures[-1]}, "
+                      f"{sampler.wall:.0f} s", flush=True)
+    except ds.errors.InstabilityError as e:
+        stopped = str(e)
+        print(f"  TIC {tic}: {stopped}", flush=True)
     forces = np.array(forces)
     late = forces[:, 0] >= FROM - 1e-9
     m = np.nanmean(np.array(measures, dtype=float), axis=0)
-    return {
+    fluid = (sim.kind == ds.FLUID) & np.isfinite(sim.positions[:, 0])
+    np.savez_compressed(OUT / f"airfoil_tic_{label(tic)}.npz", forces=forces,
+                        x=sim.positions[fluid], p=sim.pressure[fluid],
+                        omega=vorticity(sim)[fluid], time=sim.time)
+    record = {
         "tic": tic, "n": n, "particles": sim.n_particles, "steps": sim.n_steps,
-        "wall_s": sampler.wall, "particle_steps_per_s": sampler.rate,
+        "wall_s": sampler.wall, "particle_steps_per_s": sampler.particle_steps / max(sampler.wall, 1e-9),
         "cd": float(forces[late, 1].mean()), "cl": float(forces[late, 2].mean()),
         "spread": m[0], "empty_disc": m[1], "empty_cells": m[2], "region": m[3],
-        "forces": forces, "sim": sim,
+        "samples": len(measures), "end": sim.time, "stopped": stopped,
     }
+    (OUT / f"airfoil_tic_{label(tic)}.json").write_text(json.dumps(record, indent=1))
+
+
+def label(tic):
+    return "on" if tic else "off"
 
 
 COLUMNS = ["tic", "n", "particles", "cd", "cl", "spread", "empty_disc", "empty_cells",
-           "region", "steps", "wall_s", "particle_steps_per_s"]
+           "region", "samples", "end", "steps", "wall_s", "particle_steps_per_s", "stopped"]
 
 
 def write(results):
     write_csv(OUT / "airfoil.csv", COLUMNS, results)
     header = ["TIC", "c/Δx", "particles", "C_D", "C_L", "nearest-neighbour spread",
-              "largest empty disc [Δx]", "empty 2Δx cells", "region particles", "steps",
-              "wall [s]", "particle-steps/s"]
-    rows = [["on" if r["tic"] else "off", f"{r['n']}", f"{r['particles']}", f"{r['cd']:.3f}",
+              "largest empty disc [Δx]", "empty 2Δx cells", "region particles", "samples",
+              "reached t U/c", "steps", "wall [s]", "particle-steps/s"]
+    rows = [[label(r["tic"]), f"{r['n']}", f"{r['particles']}", f"{r['cd']:.3f}",
              f"{r['cl']:.3f}", f"{r['spread']:.3f}", f"{r['empty_disc']:.2f}",
-             f"{r['empty_cells']:.3f}", f"{r['region']:.0f}", f"{r['steps']}",
+             f"{r['empty_cells']:.3f}", f"{r['region']:.0f}", f"{r['samples']}",
+             f"{r['end']:.2f}" + (" (unstable)" if r["stopped"] else ""), f"{r['steps']}",
              f"{r['wall_s']:.0f}", f"{r['particle_steps_per_s']:.3g}"] for r in results]
     write_table(OUT / "airfoil_table.md", header, rows)
 
 
 def plot(results):
     import matplotlib.pyplot as plt
-    from cylinder import vorticity
 
-    curves = [(f"TIC {'on' if r['tic'] else 'off'}", *r["forces"].T) for r in results]
+    fields_of = [np.load(OUT / f"airfoil_tic_{label(r['tic'])}.npz") for r in results]
+    curves = [(f"TIC {label(r['tic'])}", *f["forces"].T) for r, f in zip(results, fields_of)]
     plot_forces(OUT / "airfoil_forces.png", curves,
                 "NACA0010, α = 30°, Re = 10⁴: drag and lift (pressure + viscous)", "t U/c")
 
     fig, axes = plt.subplots(len(results), 2, figsize=(12, 3.4 * len(results)),
                              squeeze=False)
-    for row, r in zip(axes, results):
-        sim = r["sim"]
-        fluid = sim.kind == ds.FLUID
-        x = sim.positions[fluid]
+    for row, r, f in zip(axes, results, fields_of):
+        x = f["x"]
         near = (x[:, 0] > -1) & (x[:, 0] < 3) & (np.abs(x[:, 1]) < 1.5)
-        fields = [(sim.pressure[fluid] / Q, "p / ½ρ₀U²", "viridis", (-2.0, 1.0)),
-                  (vorticity(sim)[fluid], "ω c/U", "RdBu_r", (-20.0, 20.0))]
-        for ax, (value, label, cmap, (lo, hi)) in zip(row, fields):
+        fields = [(f["p"] / Q, "p / ½ρ₀U²", "viridis", (-2.0, 1.0)),
+                  (f["omega"], "ω c/U", "RdBu_r", (-20.0, 20.0))]
+        for ax, (value, name, cmap, (lo, hi)) in zip(row, fields):
             sc = ax.scatter(x[near, 0], x[near, 1], c=value[near], s=0.3, cmap=cmap,
                             vmin=lo, vmax=hi)
             outline = naca_outline()
             ax.fill(outline[:, 0], outline[:, 1], color="0.3")
             ax.set_aspect("equal")
-            ax.set_title(f"TIC {'on' if r['tic'] else 'off'}, c/Δx = {r['n']}, "
-                         f"t U/c = {sim.time:.0f}")
-            fig.colorbar(sc, ax=ax, label=label)
+            ax.set_title(f"TIC {label(r['tic'])}, c/Δx = {r['n']}, "
+                         f"t U/c = {float(f['time']):.2f}")
+            fig.colorbar(sc, ax=ax, label=name)
     fig.tight_layout()
     fig.savefig(OUT / "airfoil_fields.png", dpi=120)
     plt.close(fig)
 
 
+def summary():
+    results = [json.loads((OUT / f"airfoil_tic_{label(tic)}.json").read_text())
+               for tic in (False, True)]
+    write(results)
+    plot(results)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=50, help="c/Δx")
-    parser.add_argument("--end", type=float, default=10.0, help="end time [c/U]")
+    parser.add_argument("--end", type=float, default=6.0, help="end time [c/U]")
+    parser.add_argument("--tic", choices=["off", "on"], nargs="*", default=["off", "on"],
+                        help="the runs to make (each can go to its own process)")
+    parser.add_argument("--summary", action="store_true",
+                        help="only rebuild the table and plots from the runs' records")
     args = parser.parse_args()
     write_outline()
     OUT.mkdir(parents=True, exist_ok=True)
-    results = [run(args.n, args.end, tic) for tic in (False, True)]
-    write(results)
-    plot(results)
+    for tic in [] if args.summary else args.tic:
+        run(args.n, args.end, tic == "on")
+    summary()
 
 
 if __name__ == "__main__":

@@ -7,10 +7,12 @@ import numpy as np
 
 class Sampler:
     """Iterating steps `sim` to each multiple of `every` up to `end` and yields that time;
-    `wall` is then the wall time so far [s] and `rate` the particle-steps per second."""
+    `wall` is then the wall time so far [s] and `rate` the particle-steps per second.
+    `after_step(t_before)`, when given, is called after every step."""
 
-    def __init__(self, sim, end, every):
+    def __init__(self, sim, end, every, after_step=None):
         self.sim, self.end, self.every = sim, end, every
+        self.after_step = after_step
         self.wall, self.particle_steps = 0.0, 0.0
 
     def __iter__(self):
@@ -18,8 +20,11 @@ class Sampler:
         for k in range(1, round(self.end / self.every) + 1):
             t = self.every * k
             while self.sim.time < t * (1 - 1e-12):
+                before = self.sim.time
                 self.sim.step()
                 self.particle_steps += self.sim.n_particles
+                if self.after_step is not None:
+                    self.after_step(before)
             self.wall = time.perf_counter() - start
             yield t
 

@@ -7,6 +7,7 @@ mod dam_break_3d;
 mod free_surface;
 mod hydrostatic;
 mod impinging_jet;
+mod les;
 mod loads;
 mod long_runs;
 mod open_boundaries;

@@ -343,6 +343,42 @@ pub struct SchemeConfig {
     /// conserved exactly).
     #[serde(default)]
     pub tensile_control: bool,
+    /// Turbulence closure: `delta_les` turns viscosity and density diffusion into LES
+    /// closures and moves particles quasi-Lagrangianly (δ-LES-SPH, SCHEME.md §11).
+    #[serde(default = "default_turbulence")]
+    pub turbulence: TurbulenceChoice,
+    /// C_S of the eddy viscosity `ν_T = (C_S l)² ‖D‖` (`delta_les`). Default: 0.12.
+    #[serde(default)]
+    pub smagorinsky_constant: Option<f64>,
+    /// C_δ of the density-diffusion coefficient `ν_δ = (C_δ l)² ‖D‖` (`delta_les`).
+    /// Default: 6.
+    #[serde(default)]
+    pub diffusion_constant: Option<f64>,
+    /// The LES length l [m] (`delta_les`). Default: the particle spacing Δx.
+    #[serde(default)]
+    pub les_length: Option<f64>,
+    /// U_max [m/s], the flow speed that sizes the quasi-Lagrangian shifting
+    /// `A_sh = a h U_max` and caps `|δu| <= U_max/2` (`delta_les`). Default: c0/10.
+    #[serde(default)]
+    pub les_velocity: Option<f64>,
+    /// The factor a of the shifting prefactor `A_sh = a h U_max` (`delta_les`; 0 leaves
+    /// the particles on the flow). Default: 8, from the Taylor-Green decay
+    /// (docs/validation/les.md).
+    #[serde(default)]
+    pub les_shifting: Option<f64>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TurbulenceChoice {
+    /// No closure: the viscosity and diffusion chosen above.
+    None,
+    /// δ-LES-SPH (Di Mascio et al. 2017; Antuono et al. 2021).
+    DeltaLes,
+}
+
+fn default_turbulence() -> TurbulenceChoice {
+    TurbulenceChoice::None
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -374,6 +410,12 @@ impl Default for SchemeConfig {
             walls: default_walls(),
             shifting: default_shifting(),
             tensile_control: false,
+            turbulence: default_turbulence(),
+            smagorinsky_constant: None,
+            diffusion_constant: None,
+            les_length: None,
+            les_velocity: None,
+            les_shifting: None,
         }
     }
 }

@@ -492,7 +492,83 @@ impl Case {
         if let Some(c) = s.viscous_cfl {
             positive("scheme.viscous_cfl", c)?;
         }
-        positive("scheme.force_cfl", s.force_cfl)
+        positive("scheme.force_cfl", s.force_cfl)?;
+        if s.turbulence == TurbulenceChoice::DeltaLes {
+            self.check_les()?;
+        }
+        Ok(())
+    }
+
+    /// δ-LES-SPH: its constants, and the flows it is offered for: periodic along every
+    /// axis, without walls or open boundaries, with its own shifting and a physical (or
+    /// no) molecular viscosity.
+    fn check_les(&self) -> Result<()> {
+        let s = &self.scheme;
+        let constants = [
+            ("scheme.smagorinsky_constant", s.smagorinsky_constant),
+            ("scheme.diffusion_constant", s.diffusion_constant),
+            ("scheme.les_shifting", s.les_shifting),
+        ];
+        for (key, value) in constants {
+            if let Some(v) = value {
+                non_negative(key, v)?;
+            }
+        }
+        for (key, value) in [
+            ("scheme.les_length", s.les_length),
+            ("scheme.les_velocity", s.les_velocity),
+        ] {
+            if let Some(v) = value {
+                positive(key, v)?;
+            }
+        }
+        let expected = |what: &str| {
+            format!("{what} with scheme.turbulence = \"delta_les\" (offered for periodic flows without walls)")
+        };
+        if s.viscosity == ViscosityChoice::Artificial {
+            return Err(SphError::invalid(
+                "scheme.viscosity",
+                "\"artificial\"",
+                expected("\"physical\" or \"none\""),
+            ));
+        }
+        if s.shifting != ShiftingChoice::None {
+            return Err(SphError::invalid(
+                "scheme.shifting",
+                "\"delta_plus\"",
+                expected("\"none\" (δ-LES-SPH shifts with its own δu)"),
+            ));
+        }
+        let walls = !self.tank.is_empty()
+            || !self.wall.is_empty()
+            || self.shape.iter().any(|sh| sh.role == Role::Wall);
+        if walls {
+            return Err(SphError::invalid(
+                "tank/wall/shape",
+                "walls",
+                expected("no walls"),
+            ));
+        }
+        if !self.open_boundary.is_empty() {
+            return Err(SphError::invalid(
+                "open_boundary",
+                self.open_boundary.len(),
+                expected("none"),
+            ));
+        }
+        let periodic = (self.domain.as_ref())
+            .is_some_and(|dom| (0..self.dimension).all(|d| dom.is_periodic(d)));
+        if !periodic {
+            return Err(SphError::invalid(
+                "domain.periodic",
+                format!(
+                    "{:?}",
+                    self.domain.as_ref().and_then(|dom| dom.periodic.clone())
+                ),
+                expected("every axis periodic"),
+            ));
+        }
+        Ok(())
     }
 }
 

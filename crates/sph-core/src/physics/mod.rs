@@ -7,6 +7,7 @@ pub mod diffusion;
 pub mod eos;
 pub mod free_surface;
 pub mod kernel;
+pub mod les;
 pub mod renormalisation;
 pub mod shifting;
 pub mod viscosity;

@@ -2,6 +2,7 @@
 //! ([`model`]), and the one place where a case's options become those types
 //! ([`resolve`]).
 
+pub mod les;
 pub mod model;
 pub mod resolve;
 

@@ -35,6 +35,9 @@ pub struct Rates<const D: usize> {
     pub drho_diff: Vec<f64>,
     /// Acceleration.
     pub du: Vec<Vector<D>>,
+    /// The shifting velocity δu that carries particles besides u (`dx/dt = u + δu`) in
+    /// quasi-Lagrangian schemes (δ-LES-SPH); empty in the others.
+    pub drift: Vec<Vector<D>>,
 }
 
 impl<const D: usize> Rates<D> {
@@ -42,6 +45,12 @@ impl<const D: usize> Rates<D> {
         self.drho.resize(n, 0.0);
         self.drho_diff.resize(n, 0.0);
         self.du.resize(n, Vector::zeros());
+    }
+
+    /// The transport velocity of particle i besides its own velocity: δu, or zero.
+    #[inline(always)]
+    pub fn drift(&self, i: usize) -> Vector<D> {
+        self.drift.get(i).copied().unwrap_or_else(Vector::zeros)
     }
 
     /// Largest acceleration magnitude.
@@ -151,6 +160,12 @@ pub trait Model<const D: usize>: Send + Sync {
     /// Whether any density diffusion is active.
     fn has_diffusion(&self) -> bool;
     fn physics(&self) -> &Physics<D>;
+    /// The largest kinematic diffusivity of the last evaluation beyond the case's
+    /// viscosity (eddy viscosity, diffusion coefficient), for the viscous limit of Δt;
+    /// 0 when the scheme has none.
+    fn max_diffusivity(&self) -> f64 {
+        0.0
+    }
 }
 
 /// A fully resolved scheme: kernel `K`, density diffusion `Df`, viscosity `V`.
@@ -484,7 +499,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
 }
 
 /// `p_i = p(ρ_i)` for every fluid particle.
-fn fluid_pressure<const D: usize>(particles: &mut Particles<D>, eos: &LinearEos) {
+pub(crate) fn fluid_pressure<const D: usize>(particles: &mut Particles<D>, eos: &LinearEos) {
     particles
         .p
         .par_iter_mut()
@@ -498,7 +513,7 @@ fn fluid_pressure<const D: usize>(particles: &mut Particles<D>, eos: &LinearEos)
 }
 
 impl Powers {
-    fn add(self, other: Self) -> Self {
+    pub(crate) fn add(self, other: Self) -> Self {
         Self {
             viscous: self.viscous + other.viscous,
             diffusive: self.diffusive + other.diffusive,

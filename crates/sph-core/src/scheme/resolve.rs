@@ -2,14 +2,16 @@
 //! the only place where options are matched. Everything below runs without a
 //! per-pair branch on them.
 
-use crate::case::{Case, DiffusionChoice, ViscosityChoice, WallCondition};
+use crate::case::{Case, DiffusionChoice, TurbulenceChoice, ViscosityChoice, WallCondition};
 use crate::physics::diffusion::{
     DeltaSph, DensityDiffusion, Ferrari, MolteniColagrossi, NoDiffusion,
 };
 use crate::physics::kernel::{
     CubicSpline, Gaussian, Kernel, KernelChoice, QuinticSpline, WendlandC2, WendlandC4,
 };
+use crate::physics::les;
 use crate::physics::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
+use crate::scheme::les::LesScheme;
 use crate::scheme::model::{Model, Physics, Scheme};
 
 /// Builds the model a case asks for, with physical constants already resolved.
@@ -30,6 +32,20 @@ fn with_kernel<const D: usize, K: Kernel>(
     kernel: K,
 ) -> Box<dyn Model<D>> {
     let s = &case.scheme;
+    if s.turbulence == TurbulenceChoice::DeltaLes {
+        let mu = match s.viscosity {
+            ViscosityChoice::Physical => s.dynamic_viscosity.unwrap_or(0.0),
+            _ => 0.0,
+        };
+        let budget = case.diagnostics.energy_budget;
+        return Box::new(LesScheme::new(
+            kernel,
+            les_constants(case, physics.eos.c0),
+            physics,
+            mu,
+            budget,
+        ));
+    }
     let delta = s.delta;
     match s.diffusion {
         DiffusionChoice::None => with_diffusion(case, physics, kernel, NoDiffusion),
@@ -70,6 +86,21 @@ fn finish<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity>(
     budget: bool,
 ) -> Box<dyn Model<D>> {
     Box::new(Scheme::new(kernel, diffusion, viscosity, physics, budget))
+}
+
+/// The δ-LES-SPH constants of a case, defaults filled in (LES.md §1): C_S = 0.12,
+/// C_δ = 6, l = Δx, U_max = c0/10, shifting factor a = 8 (see [`les`]).
+pub fn les_constants(case: &Case, c0: f64) -> les::Constants {
+    let s = &case.scheme;
+    let dx = case.particles.spacing;
+    les::Constants {
+        smagorinsky: s.smagorinsky_constant.unwrap_or(0.12),
+        diffusion: s.diffusion_constant.unwrap_or(6.0),
+        length: s.les_length.unwrap_or(dx),
+        velocity: s.les_velocity.unwrap_or(0.1 * c0),
+        shifting: s.les_shifting.unwrap_or(8.0),
+        dx,
+    }
 }
 
 /// The viscous constant K, or `None` when the case has no viscous term.

@@ -437,7 +437,9 @@ impl<const D: usize> Simulation<D> {
         if let (Some(b), Some(now)) = (self.budget.as_mut(), cx.model.last_powers()) {
             b.advance(now);
         }
-        let mut dt = self.control.dt(a_max).min(dt_lists);
+        let mut dt = (self.control)
+            .dt(a_max, cx.model.max_diffusivity())
+            .min(dt_lists);
         let remaining = limit - self.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
             dt = remaining;
@@ -510,6 +512,9 @@ impl<const D: usize> Simulation<D> {
         }
         if case.scheme.tensile_control {
             why.push("tensile instability control is not energy-conserving");
+        }
+        if case.scheme.turbulence == crate::case::TurbulenceChoice::DeltaLes {
+            why.push("δ-LES-SPH's shifting velocity δu moves particles without a power term");
         }
         if self.open.is_some() {
             why.push("open boundaries set the buffers' state and add fluid without a flux term");

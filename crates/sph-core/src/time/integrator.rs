@@ -13,6 +13,9 @@
 //!   `u½ = u + Δt/2 a(w)`, `ρ½ = ρ + Δt/2 ρ̇(w)`, `x½ = x + Δt/2 u`, then
 //!   `u' = u + Δt a(w½)`, `ρ' = ρ + Δt ρ̇(w½)`, `x' = x + Δt (u + u')/2`.
 //!   Two force evaluations per step, diffusion in both.
+//!
+//! Where the scheme moves particles off the flow (δ-LES-SPH's δu, [`Rates::drift`]),
+//! `dx/dt = u + δu` in every stage; the symplectic scheme takes δu at the midpoint.
 
 use crate::boundary::open::OpenBoundaries;
 use crate::domain::Domain;
@@ -123,7 +126,7 @@ impl<const D: usize> Rk4<D> {
             .for_each(
                 |(i, (((((((((x, u), rho), x0), u0), rho0), ax), au), ar), d0))| {
                     (*x0, *u0, *rho0) = (*x, *u, *rho);
-                    let uk = transport(kind[i], *u);
+                    let uk = transport(kind[i], *u) + r.drift(i);
                     (*ax, *au, *ar, *d0) = (uk, r.du[i], r.drho[i], r.drho_diff[i]);
                     *x += uk * c;
                     *u += r.du[i] * c;
@@ -145,7 +148,7 @@ impl<const D: usize> Rk4<D> {
             .zip(self.acc_rho.par_iter_mut())
             .enumerate()
             .for_each(|(i, (((((x, u), rho), ax), au), ar))| {
-                let uk = transport(kind[i], *u);
+                let uk = transport(kind[i], *u) + r.drift(i);
                 *ax += uk * weight;
                 *au += r.du[i] * weight;
                 *ar += r.drho[i] * weight;
@@ -181,7 +184,7 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
             .zip(p.rho.par_iter_mut())
             .enumerate()
             .for_each(|(i, ((x, u), rho))| {
-                *x = w0.x[i] + (ax[i] + transport(kind[i], *u)) * s;
+                *x = w0.x[i] + (ax[i] + transport(kind[i], *u) + r.drift(i)) * s;
                 *rho = w0.rho[i] + (ar[i] + r.drho[i]) * s + d0[i] * dt;
                 *u = w0.u[i] + (au[i] + r.du[i]) * s;
             });
@@ -214,7 +217,7 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
             .zip(p.rho.par_iter_mut())
             .enumerate()
             .for_each(|(i, ((x, u), rho))| {
-                *x += transport(kind[i], *u) * half;
+                *x += (transport(kind[i], *u) + r.drift(i)) * half;
                 *u += r.du[i] * half;
                 *rho += (r.drho[i] + r.drho_diff[i]) * half;
             });
@@ -227,7 +230,8 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
             .for_each(|(i, ((x, u), rho))| {
                 *u = w0.u[i] + r.du[i] * dt;
                 *rho = w0.rho[i] + (r.drho[i] + r.drho_diff[i]) * dt;
-                *x = w0.x[i] + (transport(kind[i], w0.u[i]) + transport(kind[i], *u)) * half;
+                let carried = transport(kind[i], w0.u[i]) + transport(kind[i], *u);
+                *x = w0.x[i] + carried * half + r.drift(i) * dt;
             });
     }
 }

@@ -1,6 +1,8 @@
 //! Adaptive time step (SCHEME.md §6):
-//! `Δt = min( CFL h/c0,  C_ν h²/ν,  C_f sqrt(h/|a|max) )`,
-//! the acoustic, viscous (Morris et al. 1997) and body-force (Monaghan 1992) limits.
+//! `Δt = min( CFL h/c0,  C_ν h²/max(ν, ν_model),  C_f sqrt(h/|a|max) )`,
+//! the acoustic, viscous (Morris et al. 1997) and body-force (Monaghan 1992) limits;
+//! `ν_model` is the largest diffusivity the scheme adds (δ-LES-SPH: `max(ν + ν_T, ν_δ)`,
+//! LES.md §1), 0 for the others.
 
 /// The case-settable coefficients and the fixed scales of a run.
 #[derive(Debug, Clone, Copy)]
@@ -20,11 +22,13 @@ impl TimeStepControl {
         self.cfl * self.h / self.c0
     }
 
-    /// The step for the largest acceleration `a_max`.
-    pub fn dt(&self, a_max: f64) -> f64 {
+    /// The step for the largest acceleration `a_max` and the scheme's largest
+    /// diffusivity `nu_model` [m²/s].
+    pub fn dt(&self, a_max: f64, nu_model: f64) -> f64 {
         let mut dt = self.acoustic();
-        if self.nu > 0.0 {
-            dt = dt.min(self.viscous_cfl * self.h * self.h / self.nu);
+        let nu = self.nu.max(nu_model);
+        if nu > 0.0 {
+            dt = dt.min(self.viscous_cfl * self.h * self.h / nu);
         }
         if a_max > 0.0 {
             dt = dt.min(self.force_cfl * (self.h / a_max).sqrt());
@@ -47,9 +51,10 @@ mod tests {
             c0: 10.0,
             nu: 0.0,
         };
-        assert_eq!(c.dt(0.0), 1.5e-3);
+        assert_eq!(c.dt(0.0, 0.0), 1.5e-3);
         let visc = TimeStepControl { nu: 0.01, ..c };
-        assert!((visc.dt(0.0) - 0.125e-4 / 0.01).abs() < 1e-15);
-        assert!((c.dt(1e4) - 0.25 * (1e-6f64).sqrt()).abs() < 1e-15);
+        assert!((visc.dt(0.0, 0.0) - 0.125e-4 / 0.01).abs() < 1e-15);
+        assert!((c.dt(0.0, 0.01) - 0.125e-4 / 0.01).abs() < 1e-15);
+        assert!((c.dt(1e4, 0.0) - 0.25 * (1e-6f64).sqrt()).abs() < 1e-15);
     }
 }

@@ -808,6 +808,27 @@ mod tests {
         assert!(e.starts_with("fluid_block[0].hi"), "{e}");
     }
 
+    /// δ-LES-SPH is offered for periodic flows without walls: each other setting is
+    /// refused in one line naming its key.
+    #[test]
+    fn les_is_refused_where_it_is_not_offered() {
+        let les = "[scheme]\nturbulence = \"delta_les\"\nviscosity = \"physical\"\n\
+                   dynamic_viscosity = 0.001";
+        let e = error_of(&format!("{MINIMAL}\n{les}"));
+        assert!(e.starts_with("tank/wall/shape = walls"), "{e}");
+        let periodic = "[domain]\nlo = [0.0, 0.0]\nhi = [0.2, 0.1]\nperiodic = [true, true]";
+        let open = MINIMAL.replace("[[tank]]\n        lo = [0.0, 0.0]\n        hi = [0.5, 0.3]", "");
+        let e = error_of(&format!("{open}\n{les}"));
+        assert!(e.starts_with("domain.periodic = None"), "{e}");
+        let e = error_of(&format!("{open}\n{les}\nshifting = \"delta_plus\"\n{periodic}"));
+        assert!(e.starts_with("scheme.shifting = \"delta_plus\""), "{e}");
+        let e = error_of(&format!("{open}\n{les}\nsmagorinsky_constant = -0.1\n{periodic}"));
+        assert!(e.starts_with("scheme.smagorinsky_constant = -0.1"), "{e}");
+        let artificial = "[scheme]\nturbulence = \"delta_les\"";
+        let e = error_of(&format!("{open}\n{artificial}\n{periodic}"));
+        assert!(e.starts_with("scheme.viscosity = \"artificial\""), "{e}");
+    }
+
     #[test]
     fn physical_viscosity_needs_mu() {
         let e = error_of(&format!("{MINIMAL}\n[scheme]\nviscosity = \"physical\""));

@@ -154,15 +154,15 @@ impl<const D: usize> Cells<D> {
     fn for_neighbours(&self, c: usize, domain: &Domain<D>, mut f: impl FnMut(usize)) {
         let k = self.coords(c);
         let mut stride = 1;
-        for d in 0..D {
+        for (d, &kd) in k.iter().enumerate() {
             let n = self.n[d];
             let periodic = domain.is_periodic(d);
-            if k[d] + 1 < n {
+            if kd + 1 < n {
                 f(c + stride);
             } else if periodic && n > 1 {
                 f(c + stride - n * stride);
             }
-            if k[d] > 0 {
+            if kd > 0 {
                 f(c - stride);
             } else if periodic && n > 1 {
                 f(c + (n - 1) * stride);

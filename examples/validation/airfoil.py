@@ -142,7 +142,7 @@ def disorder(sim):
 def run(n, end, tic):
     """One run; a run that goes unstable ends there, and its record says when and where."""
     sim = ds.Simulation(config(n, end, tic))
-    forces, measures, stopped = [], [], ""
+    forces, measures, at, stopped = [], [], [], ""
     sampler = Sampler(sim, end, 0.02, after_step=drive(sim))
     try:
         for t in sampler:
@@ -150,6 +150,7 @@ def run(n, end, tic):
             forces.append((sim.time, force[0] / Q, force[1] / Q))
             if any(abs(t - s) < 1e-9 for s in SAMPLES):
                 measures.append(disorder(sim))
+                at.append(sim.time)
                 print(f"  TIC {tic}: t = {sim.time:.1f}, C_D {force[0] / Q:.3f}, "
                       f"C_L {force[1] / Q:.3f}, disorder {measures[-1]}, "
                       f"{sampler.wall:.0f} s", flush=True)
@@ -169,6 +170,7 @@ def run(n, end, tic):
         "cd": float(forces[late, 1].mean()), "cl": float(forces[late, 2].mean()),
         "spread": m[0], "empty_disc": m[1], "empty_cells": m[2], "region": m[3],
         "samples": len(measures), "end": sim.time, "stopped": stopped,
+        "disorder_by_time": [[t, *m] for t, m in zip(at, measures)],
     }
     (OUT / f"airfoil_tic_{label(tic)}.json").write_text(json.dumps(record, indent=1))
 
@@ -177,17 +179,21 @@ def label(tic):
     return "on" if tic else "off"
 
 
-COLUMNS = ["tic", "n", "particles", "cd", "cl", "spread", "empty_disc", "empty_cells",
+COLUMNS = ["tic", "n", "particles", "cd", "cl", "cd_common", "cl_common", "common_end",
+           "spread", "empty_disc", "empty_cells",
            "region", "samples", "end", "steps", "wall_s", "particle_steps_per_s", "stopped"]
 
 
 def write(results):
     write_csv(OUT / "airfoil.csv", COLUMNS, results)
-    header = ["TIC", "c/Δx", "particles", "C_D", "C_L", "nearest-neighbour spread",
+    header = ["TIC", "c/Δx", "particles", "C_D", "C_L", "C_D, C_L over the common window",
+              "nearest-neighbour spread",
               "largest empty disc [Δx]", "empty 2Δx cells", "region particles", "samples",
               "reached t U/c", "steps", "wall [s]", "particle-steps/s"]
     rows = [[label(r["tic"]), f"{r['n']}", f"{r['particles']}", f"{r['cd']:.3f}",
-             f"{r['cl']:.3f}", f"{r['spread']:.3f}", f"{r['empty_disc']:.2f}",
+             f"{r['cl']:.3f}",
+             f"{r['cd_common']:.3f}, {r['cl_common']:.3f} (t = {FROM:.0f}-{r['common_end']:.2f})",
+             f"{r['spread']:.3f}", f"{r['empty_disc']:.2f}",
              f"{r['empty_cells']:.3f}", f"{r['region']:.0f}", f"{r['samples']}",
              f"{r['end']:.2f}" + (" (unstable)" if r["stopped"] else ""), f"{r['steps']}",
              f"{r['wall_s']:.0f}", f"{r['particle_steps_per_s']:.3g}"] for r in results]
@@ -224,8 +230,16 @@ def plot(results):
 
 
 def summary():
+    """The table and plots from the runs' records; the force means also over the window
+    both runs reached (from FROM to the earlier end)."""
     results = [json.loads((OUT / f"airfoil_tic_{label(tic)}.json").read_text())
                for tic in (False, True)]
+    common = min(r["end"] for r in results)
+    for r in results:
+        forces = np.load(OUT / f"airfoil_tic_{label(r['tic'])}.npz")["forces"]
+        window = (forces[:, 0] >= FROM - 1e-9) & (forces[:, 0] <= common + 1e-9)
+        r["cd_common"], r["cl_common"] = forces[window, 1:].mean(axis=0)
+        r["common_end"] = common
     write(results)
     plot(results)
 
@@ -243,7 +257,11 @@ def main():
     OUT.mkdir(parents=True, exist_ok=True)
     for tic in [] if args.summary else args.tic:
         run(args.n, args.end, tic == "on")
-    summary()
+    missing = [t for t in ("off", "on") if not (OUT / f"airfoil_tic_{t}.json").exists()]
+    if missing:
+        print(f"the table waits for the run with TIC {', '.join(missing)} (then --summary)")
+    else:
+        summary()
 
 
 if __name__ == "__main__":

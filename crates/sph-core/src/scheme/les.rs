@@ -29,7 +29,7 @@ use crate::physics::diffusion::{DeltaSph, DensityDiffusion, Pair};
 use crate::physics::free_surface::{self, FreeSurface};
 use crate::physics::kernel::Kernel;
 use crate::physics::les::{self, harmonic_mean, Constants, Fields};
-use crate::physics::shifting::{self, Shift};
+use crate::physics::shifting::Shift;
 use crate::physics::viscosity::physical_k;
 use crate::scheme::model::{fluid_pressure, Model, Physics, Powers, Rates};
 use rayon::prelude::*;
@@ -271,27 +271,20 @@ impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
         self.interior = interior;
     }
 
-    /// δ+-SPH's shifting between steps; the case checks do not combine it with
-    /// δ-LES-SPH, whose own shifting is δu.
+    /// No shift between steps: δ-LES-SPH moves particles by δu within the step (the
+    /// case checks refuse δ+-SPH's shifting beside it); the free surface as detected.
     fn shift(
         &mut self,
         particles: &mut Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
-        dx: f64,
-        cfl_ma: f64,
+        _dx: f64,
+        _cfl_ma: f64,
     ) -> Shift<D> {
-        let strength = shifting::Strength { dx, cfl_ma };
-        let volume = particles.volumes();
-        shifting::shift(
-            &self.kernel,
-            strength,
-            particles,
-            &volume,
-            list,
-            domain,
-            None,
-        )
+        Shift {
+            dr: vec![Vector::zeros(); particles.len()],
+            surface: self.free_surface(particles, list, domain),
+        }
     }
 
     fn last_powers(&self) -> Option<Powers> {

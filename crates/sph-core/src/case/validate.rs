@@ -817,12 +817,19 @@ mod tests {
         let e = error_of(&format!("{MINIMAL}\n{les}"));
         assert!(e.starts_with("tank/wall/shape = walls"), "{e}");
         let periodic = "[domain]\nlo = [0.0, 0.0]\nhi = [0.2, 0.1]\nperiodic = [true, true]";
-        let open = MINIMAL.replace("[[tank]]\n        lo = [0.0, 0.0]\n        hi = [0.5, 0.3]", "");
+        let open = MINIMAL.replace(
+            "[[tank]]\n        lo = [0.0, 0.0]\n        hi = [0.5, 0.3]",
+            "",
+        );
         let e = error_of(&format!("{open}\n{les}"));
         assert!(e.starts_with("domain.periodic = None"), "{e}");
-        let e = error_of(&format!("{open}\n{les}\nshifting = \"delta_plus\"\n{periodic}"));
+        let e = error_of(&format!(
+            "{open}\n{les}\nshifting = \"delta_plus\"\n{periodic}"
+        ));
         assert!(e.starts_with("scheme.shifting = \"delta_plus\""), "{e}");
-        let e = error_of(&format!("{open}\n{les}\nsmagorinsky_constant = -0.1\n{periodic}"));
+        let e = error_of(&format!(
+            "{open}\n{les}\nsmagorinsky_constant = -0.1\n{periodic}"
+        ));
         assert!(e.starts_with("scheme.smagorinsky_constant = -0.1"), "{e}");
         let artificial = "[scheme]\nturbulence = \"delta_les\"";
         let e = error_of(&format!("{open}\n{artificial}\n{periodic}"));

@@ -31,7 +31,7 @@ use crate::physics::kernel::Kernel;
 use crate::physics::les::{self, harmonic_mean, Constants, Fields};
 use crate::physics::shifting::Shift;
 use crate::physics::viscosity::physical_k;
-use crate::scheme::model::{fluid_pressure, Model, Physics, Powers, Rates};
+use crate::scheme::model::{fluid_pressure, tensile_pressure, Model, Physics, Powers, Rates};
 use rayon::prelude::*;
 
 /// The δ-LES-SPH model with kernel `K`.
@@ -106,15 +106,16 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
         list: &NeighbourList<D>,
         domain: &Domain<D>,
     ) -> Sums<D> {
-        let (vol, f_) = (&self.volume, &self.fields);
+        let (vol, fields) = (&self.volume, &self.fields);
         let (xi, ui, rho_i) = (p.x[i], p.u[i], p.rho[i]);
-        let (shift_i, nu_t_i, nu_d_i, grad_i) =
-            (f_.shift[i], f_.nu_t[i], f_.nu_delta[i], f_.grad_rho[i]);
+        let (shift_i, nu_t_i, nu_d_i, grad_i) = (
+            fields.shift[i],
+            fields.nu_t[i],
+            fields.nu_delta[i],
+            fields.grad_rho[i],
+        );
         let hat_i = ui + shift_i;
-        let pi_pair = match &self.interior {
-            Some(interior) if p.p[i] < 0.0 && interior[i] => -p.p[i],
-            _ => p.p[i],
-        };
+        let pi_pair = tensile_pressure(self.interior.as_deref(), i, p.p[i]);
         let zero = Vector::<D>::zeros();
         let mut s = Sums {
             divergence: 0.0,
@@ -131,7 +132,7 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
             let r = r2.sqrt();
             let f = self.kernel.dw_over_r(r);
             let grad_w = x_ij * (f * vol[j]);
-            let (uj, shift_j) = (p.u[j], f_.shift[j]);
+            let (uj, shift_j) = (p.u[j], fields.shift[j]);
             s.divergence += (uj + shift_j - hat_i).dot(&grad_w);
             s.shift_flux += (shift_j * p.rho[j] + shift_i * rho_i).dot(&grad_w);
             let inv_r2_reg = 1.0 / (r2 + self.eta2);
@@ -146,13 +147,13 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
                 rho_i,
                 p.rho[j],
                 &grad_i,
-                &f_.grad_rho[j],
+                &fields.grad_rho[j],
                 &pair,
             );
-            s.diffusion += harmonic_mean(nu_d_i, f_.nu_delta[j]) * psi * vol[j];
+            s.diffusion += harmonic_mean(nu_d_i, fields.nu_delta[j]) * psi * vol[j];
             s.pressure += grad_w * (p.p[j] + pi_pair);
             let du = uj - ui;
-            let nu_ij = self.nu + harmonic_mean(nu_t_i, f_.nu_t[j]);
+            let nu_ij = self.nu + harmonic_mean(nu_t_i, fields.nu_t[j]);
             // π_ij = (u_j-u_i)·(x_j-x_i)/(r²+η²) = -(u_j-u_i)·x_ij/(r²+η²)
             s.viscous -= grad_w * (nu_ij * du.dot(&x_ij) * inv_r2_reg);
             s.shift_momentum += uj * shift_j.dot(&grad_w) + ui * shift_i.dot(&grad_w)

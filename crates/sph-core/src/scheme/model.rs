@@ -404,15 +404,10 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         }
     }
 
-    /// The p_i of fluid particle i in its pair terms. Tensile instability control (Sun
-    /// et al. 2018, SCHEME.md §9): an interior particle in tension takes (p_j - p_i)
-    /// instead of (p_j + p_i). Decided once per particle.
+    /// The p_i of fluid particle i in its pair terms, see [`tensile_pressure`].
     #[inline(always)]
     fn pair_pressure(&self, i: usize, pi: f64) -> f64 {
-        match &self.interior {
-            Some(interior) if pi < 0.0 && interior[i] => -pi,
-            _ => pi,
-        }
+        tensile_pressure(self.interior.as_deref(), i, pi)
     }
 
     /// `∇_iW_iw V_w` of fluid particle i and wall particle j, and the viscous factor
@@ -495,6 +490,17 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             .zip(particles.mass.par_iter())
             .zip(particles.rho.par_iter())
             .for_each(|((v, &m), &rho)| *v = m / rho);
+    }
+}
+
+/// The p_i of fluid particle i in its pair terms. Tensile instability control (Sun et
+/// al. 2018, SCHEME.md §9): where `interior` is given, an interior particle in tension
+/// takes (p_j - p_i) instead of (p_j + p_i). Decided once per particle.
+#[inline(always)]
+pub(crate) fn tensile_pressure(interior: Option<&[bool]>, i: usize, pi: f64) -> f64 {
+    match interior {
+        Some(interior) if pi < 0.0 && interior[i] => -pi,
+        _ => pi,
     }
 }
 

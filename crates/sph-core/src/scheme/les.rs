@@ -31,7 +31,9 @@ use crate::physics::kernel::Kernel;
 use crate::physics::les::{self, harmonic_mean, Constants, Fields};
 use crate::physics::shifting::Shift;
 use crate::physics::viscosity::physical_k;
-use crate::scheme::model::{fluid_pressure, tensile_pressure, Model, Physics, Powers, Rates};
+use crate::scheme::model::{
+    fluid_pressure, pressure_and_volume, tensile_pressure, Model, Physics, Powers, Rates,
+};
 use rayon::prelude::*;
 
 /// The δ-LES-SPH model with kernel `K`.
@@ -204,13 +206,7 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
     /// Fluid pressure from the EOS, every particle's volume `m/ρ`, then the closure
     /// fields and the largest diffusivity.
     fn prepare(&mut self, p: &mut Particles<D>, list: &NeighbourList<D>, domain: &Domain<D>) {
-        fluid_pressure(p, &self.physics.eos);
-        self.volume.resize(p.len(), 0.0);
-        self.volume
-            .par_iter_mut()
-            .zip(p.mass.par_iter())
-            .zip(p.rho.par_iter())
-            .for_each(|((v, &m), &rho)| *v = m / rho);
+        pressure_and_volume(p, &self.physics.eos, &mut self.volume);
         let mut fields = std::mem::take(&mut self.fields);
         les::compute(
             &self.kernel,

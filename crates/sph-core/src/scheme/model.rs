@@ -483,14 +483,23 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
 
     /// Fluid pressure from the EOS and every particle's volume `m/ρ`.
     fn update_pressure_and_volume(&mut self, particles: &mut Particles<D>) {
-        fluid_pressure(particles, &self.physics.eos);
-        self.volume.resize(particles.len(), 0.0);
-        self.volume
-            .par_iter_mut()
-            .zip(particles.mass.par_iter())
-            .zip(particles.rho.par_iter())
-            .for_each(|((v, &m), &rho)| *v = m / rho);
+        pressure_and_volume(particles, &self.physics.eos, &mut self.volume);
     }
+}
+
+/// Fluid pressure from the EOS and every particle's volume `m/ρ` into `volume`.
+pub(crate) fn pressure_and_volume<const D: usize>(
+    particles: &mut Particles<D>,
+    eos: &LinearEos,
+    volume: &mut Vec<f64>,
+) {
+    fluid_pressure(particles, eos);
+    volume.resize(particles.len(), 0.0);
+    volume
+        .par_iter_mut()
+        .zip(particles.mass.par_iter())
+        .zip(particles.rho.par_iter())
+        .for_each(|((v, &m), &rho)| *v = m / rho);
 }
 
 /// The p_i of fluid particle i in its pair terms. Tensile instability control (Sun et

@@ -329,6 +329,11 @@ pub struct SchemeConfig {
     /// Viscous limit `Δt <= C_ν h²/ν`. Default: 0.125 (rk4) or 0.09 (symplectic).
     #[serde(default)]
     pub viscous_cfl: Option<f64>,
+    /// Density-diffusion limit `Δt <= C_ψ h²/max ν_δ` of `delta_les`. Default: 0.25
+    /// (rk4) or 0.18 (symplectic), 80% of the stability bound of the worst kernel
+    /// (Wendland C4 at h = 2Δx, whose diffusion eigenvalue reaches 8.9 ν_δ/h²).
+    #[serde(default)]
+    pub diffusion_cfl: Option<f64>,
     /// Body-force limit `Δt <= C_f sqrt(h/|a|max)`.
     #[serde(default = "default_force_cfl")]
     pub force_cfl: f64,
@@ -406,6 +411,7 @@ impl Default for SchemeConfig {
             integrator: default_integrator(),
             cfl: None,
             viscous_cfl: None,
+            diffusion_cfl: None,
             force_cfl: default_force_cfl(),
             walls: default_walls(),
             shifting: default_shifting(),
@@ -459,6 +465,16 @@ impl SchemeConfig {
         self.viscous_cfl.unwrap_or(match self.integrator {
             IntegratorChoice::Rk4 => 0.125,
             IntegratorChoice::Symplectic => 0.09,
+        })
+    }
+    /// The density-diffusion number `C_ψ` in force (δ-LES-SPH's `ν_δ` limit): 0.25 for
+    /// RK4, 0.18 for the symplectic scheme, below 0.85 of the stability intervals
+    /// (2.785 and 2) over the largest diffusion eigenvalue of every kernel (tested in
+    /// `time::step_size`).
+    pub fn diffusion_cfl(&self) -> f64 {
+        self.diffusion_cfl.unwrap_or(match self.integrator {
+            IntegratorChoice::Rk4 => 0.25,
+            IntegratorChoice::Symplectic => 0.18,
         })
     }
     /// α of the artificial viscosity (default 0.02).

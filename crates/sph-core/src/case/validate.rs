@@ -492,6 +492,9 @@ impl Case {
         if let Some(c) = s.viscous_cfl {
             positive("scheme.viscous_cfl", c)?;
         }
+        if let Some(c) = s.diffusion_cfl {
+            positive("scheme.diffusion_cfl", c)?;
+        }
         positive("scheme.force_cfl", s.force_cfl)?;
         if s.turbulence == TurbulenceChoice::DeltaLes {
             self.check_les()?;

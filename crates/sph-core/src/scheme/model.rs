@@ -91,6 +91,15 @@ pub struct Physics<const D: usize> {
     pub wall_viscous_weight: f64,
 }
 
+/// The largest diffusivities [m²/s] a scheme adds to the case's viscosity.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Diffusivities {
+    /// Of the momentum equation, the case's viscosity included (δ-LES-SPH: `ν + ν_T`).
+    pub momentum: f64,
+    /// Of the continuity equation (δ-LES-SPH: `ν_δ`).
+    pub density: f64,
+}
+
 /// What the integrators and diagnostics need from a resolved scheme.
 pub trait Model<const D: usize>: Send + Sync {
     /// Fills `rates` at the current state: pressure from the EOS, wall extrapolation,
@@ -160,11 +169,11 @@ pub trait Model<const D: usize>: Send + Sync {
     /// Whether any density diffusion is active.
     fn has_diffusion(&self) -> bool;
     fn physics(&self) -> &Physics<D>;
-    /// The largest kinematic diffusivity of the last evaluation beyond the case's
-    /// viscosity (eddy viscosity, diffusion coefficient), for the viscous limit of Δt;
-    /// 0 when the scheme has none.
-    fn max_diffusivity(&self) -> f64 {
-        0.0
+    /// The largest momentum and density diffusivities of the last evaluation beyond
+    /// the case's viscosity (eddy viscosity, diffusion coefficient), for the limits of
+    /// Δt; zero when the scheme has none.
+    fn diffusivities(&self) -> Diffusivities {
+        Diffusivities::default()
     }
 }
 

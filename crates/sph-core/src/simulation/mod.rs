@@ -118,6 +118,7 @@ impl<const D: usize> Simulation<D> {
         let control = TimeStepControl {
             cfl: case.scheme.cfl(),
             viscous_cfl: case.scheme.viscous_cfl(),
+            diffusion_cfl: case.scheme.diffusion_cfl(),
             force_cfl: case.scheme.force_cfl,
             h: case.h(),
             c0: setup.eos.c0,
@@ -438,7 +439,7 @@ impl<const D: usize> Simulation<D> {
             b.advance(now);
         }
         let mut dt = (self.control)
-            .dt(a_max, cx.model.max_diffusivity())
+            .dt(a_max, cx.model.diffusivities())
             .min(dt_lists);
         let remaining = limit - self.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {

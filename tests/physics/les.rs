@@ -3,7 +3,7 @@
 //! exp(-16π²νt), the closure's own effect (ν_T/ν ≈ 0.2-0.7% here) and the total momentum.
 //!
 //! Measured, the largest |E/E_exact - 1| over t ∈ [0, 1] (default shifting a = 8):
-//! 3.0% at L/Δx = 50 and 1.3% at 100 (LES.md's windows: 5% and 2%). The error is the
+//! 3.0% at L/Δx = 50 and 1.14% at 100 (LES.md's windows: 5% and 2%). The error is the
 //! start's transient, while the lattice first deforms at the saddle points; the decay
 //! rate after t = 0.3 is the exact one within 1%.
 
@@ -68,9 +68,9 @@ fn v1_taylor_green_energy_follows_the_exact_decay() {
     assert!(momentum < 1e-3, "momentum {momentum}");
 }
 
-/// V1 converges: within 2% at L/Δx = 100 (measured 1.18%), below the error at 50, and
+/// V1 converges: within 2% at L/Δx = 100 (measured 1.14%), below the error at 50, and
 /// there the closure (C_S = C_δ = 0 against the defaults) changes E by at most 1%.
-/// About 6 minutes on 2 cores: `cargo test --release --test physics les -- --ignored`.
+/// About 2 minutes on 2 cores: `cargo test --release --test physics les -- --ignored`.
 #[test]
 #[ignore]
 fn v1_taylor_green_converges() {

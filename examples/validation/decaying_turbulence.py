@@ -188,6 +188,14 @@ def filtered_reference(ref, n):
     return spectra, tf.shell_enstrophy(spectra, n // 4)
 
 
+def spectral_slope(e):
+    """The least-squares slope of log E against log k over kL ∈ [60, 150] (LES.md V3's
+    band; shells k = 10 .. 23), from a spectrum E(k), k = 1, 2, ..."""
+    k = np.arange(1, len(e) + 1)
+    band = (2.0 * np.pi * k >= 60.0) & (2.0 * np.pi * k <= 150.0)
+    return float(np.polyfit(np.log(k[band]), np.log(e[band]), 1)[0])
+
+
 def filtered_reference_vorticity(ref, j, n):
     """The reference's vorticity at its j-th field time on a run's grid of cell centres
     (n × n, x = (i + ½)/n), through the gridding filter: the stored 256² point values
@@ -251,6 +259,8 @@ def figures(run_record, ref):
         row[f"spectrum_large_{s:.0f}"] = float(np.sqrt(np.mean(
             np.log10(sph[large] / exact[large]) ** 2)))
         row[f"spectrum_high_{s:.0f}"] = float(np.mean(sph[~large] / exact[~large]))
+        row[f"slope_{s:.0f}"] = spectral_slope(run_record["spectra"][j])
+        row[f"slope_reference_filtered_{s:.0f}"] = spectral_slope(spectra_ref[r])
     return row
 
 

@@ -131,15 +131,16 @@ def run(scheme, n, end, every, overrides=()):
                 field_times.append(sim.time)
                 vorticity.append(tf.vorticity_on_grid(u, v).astype(np.float32))
             print(f"{scheme} n={n} t={sim.time:.2f} E={energy[-1]:.5f} "
-                  f"Z={tf.shell_enstrophy(spectra[-1], n // 4):.2f} wall {time.perf_counter() - start:.0f} s", flush=True)
+                  f"Z={tf.shell_enstrophy(spectra[-1], n // 4):.2f} "
+                  f"wall {time.perf_counter() - start:.0f} s", flush=True)
     except ds.InstabilityError as err:
         status = f"unstable at t = {sim.time:.3f}: {str(err).splitlines()[0]}"
         print(status)
     wall = time.perf_counter() - start
     np.savez_compressed(
         OUT / f"decaying_turbulence_{scheme}_n{n}{tag(overrides)}.npz", scheme=scheme, n=n,
-        variant=variant,
-        time=np.array(times), energy=np.array(energy), field_times=np.array(field_times), spectra=np.array(spectra),
+        variant=variant, time=np.array(times), energy=np.array(energy),
+        spectra=np.array(spectra), field_times=np.array(field_times),
         vorticity=np.array(vorticity), wall_s=wall, steps=steps,
         particles=sim.n_particles, status=status)
     print(f"{scheme} n={n}: {steps} steps, {wall:.0f} s, "
@@ -281,7 +282,8 @@ def pct(x):
 
 def table(rows):
     header = ["scheme", "overrides", "L/Δx", "E err t=1/2/3", "Z err t=1/2/3 (resolved band)",
-              "ω correlation t=1/2/3", "log₁₀ spectrum rms, large scales t=2/3", "high-k E/E_ref t=2/3",
+              "ω correlation t=1/2/3", "log₁₀ spectrum rms, large scales t=2/3",
+              "high-k E/E_ref t=2/3",
               "wall", "status"]
     body = []
     for r in rows:

@@ -169,9 +169,9 @@ pub trait Model<const D: usize>: Send + Sync {
     /// Whether any density diffusion is active.
     fn has_diffusion(&self) -> bool;
     fn physics(&self) -> &Physics<D>;
-    /// The largest momentum and density diffusivities of the last evaluation beyond
-    /// the case's viscosity (eddy viscosity, diffusion coefficient), for the limits of
-    /// Δt; zero when the scheme has none.
+    /// The largest momentum diffusivity (the case's viscosity plus an eddy viscosity)
+    /// and density diffusivity (a diffusion coefficient) of the last evaluation, for
+    /// the limits of Δt; zero when the scheme adds none.
     fn diffusivities(&self) -> Diffusivities {
         Diffusivities::default()
     }

@@ -85,19 +85,24 @@ def wendland_c2(q):
 
 
 def gridded_velocity(sim, n):
-    """The particle velocity on the n × n grid of cell centres (indexing [iy, ix]),
+    """The particle velocity of a running simulation on the n × n grid of cell centres
+    (see `gridded`)."""
+    return gridded(sim.positions, sim.mass / sim.density, sim.velocities, n)
+
+
+def gridded(positions, volumes, velocities, n):
+    """Particle velocities on the n × n grid of cell centres (indexing [iy, ix]):
     Shepard-normalised kernel interpolation with h = 2Δx over the periodic square."""
-    x = np.mod(sim.positions, 1.0)
+    x = np.mod(positions[:, :2], 1.0)
     g = (np.arange(n) + 0.5) / n
     gx, gy = np.meshgrid(g, g)
     grid = np.column_stack([gx.ravel(), gy.ravel()])
     h = 2.0 / n
     pairs = cKDTree(grid, boxsize=1.0).sparse_distance_matrix(
         cKDTree(x, boxsize=1.0), 2.0 * h, output_type="coo_matrix")
-    w = wendland_c2(pairs.data / h) * (sim.mass / sim.density)[pairs.col]
+    w = wendland_c2(pairs.data / h) * volumes[pairs.col]
     norm = np.bincount(pairs.row, weights=w, minlength=n * n)
-    u = sim.velocities
-    return [(np.bincount(pairs.row, weights=w * u[pairs.col, d], minlength=n * n)
+    return [(np.bincount(pairs.row, weights=w * velocities[pairs.col, d], minlength=n * n)
              / norm).reshape(n, n) for d in range(2)]
 
 

@@ -6,6 +6,7 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1};
 use signal_hook::flag;
+use sph_core::case::{ShiftingChoice, TurbulenceChoice};
 use sph_core::io::output::Output;
 use sph_core::io::restart;
 use sph_core::run::{Control, Ending, Run};
@@ -228,6 +229,7 @@ fn describe<const D: usize>(case: &Case) -> Result<(String, String)> {
     if let Some(open) = sim.open_boundaries() {
         report.push_str(&open.describe(sim.particles()));
     }
+
     let (fluid, all) = (sim.n_fluid(), sim.particles().len());
     let summary = format!("{fluid} fluid and {} wall particles", all - fluid);
     Ok((summary, report))
@@ -394,6 +396,34 @@ fn drive<const D: usize>(mut sim: Simulation<D>, mut run: Run, options: &RunOpti
     }
 }
 
+/// The scheme of the summary: the closure or the diffusion, shifting, tensile control,
+/// viscosity, integrator and CFL number, and whether a body force drives the flow.
+fn scheme_line<const D: usize>(sim: &Simulation<D>) -> String {
+    let case = sim.case();
+    let s = &case.scheme;
+    let mut parts = vec![if s.turbulence == TurbulenceChoice::DeltaLes {
+        let les = sph_core::scheme::resolve::les_constants(case, sim.physics().eos.c0);
+        format!(
+            "δ-LES-SPH (C_S = {}, C_δ = {}, l = {} m, U_max = {} m/s)",
+            les.smagorinsky, les.diffusion, les.length, les.velocity
+        )
+    } else {
+        format!("{:?} diffusion (δ = {})", s.diffusion, s.delta)
+    }];
+    if s.shifting != ShiftingChoice::None {
+        parts.push(format!("{:?} shifting", s.shifting));
+    }
+    if s.tensile_control {
+        parts.push("tensile control".into());
+    }
+    parts.push(format!("{:?} viscosity", s.viscosity));
+    parts.push(format!("{:?}, CFL {}", s.integrator, s.cfl()));
+    if case.forcing.is_some() {
+        parts.push("body force from [forcing]".into());
+    }
+    parts.join(", ")
+}
+
 fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
     let (output, since) = (&run.output, run.since);
     let wall = run.wall.as_secs_f64();
@@ -407,14 +437,7 @@ fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
         n,
         sim.particles().len() - n
     );
-    println!(
-        "scheme          {:?} diffusion (δ = {}), {:?} viscosity, {:?}, CFL {}",
-        sim.case().scheme.diffusion,
-        sim.case().scheme.delta,
-        sim.case().scheme.viscosity,
-        sim.case().scheme.integrator,
-        sim.case().scheme.cfl()
-    );
+    println!("scheme          {}", scheme_line(sim));
     println!("sound speed     c0 = {:.4} m/s", sim.physics().eos.c0);
     println!(
         "simulated       t = {:.6} s in {} steps (last Δt = {:.3e} s)",

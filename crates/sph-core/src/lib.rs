@@ -9,13 +9,14 @@
 //!
 //! Modules by concept, each depending only on those listed before it: [`particles`],
 //! [`domain`] → [`neighbours`] → [`physics`] → [`boundary`] → [`case`] → [`scheme`],
-//! [`geometry`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
+//! [`geometry`], [`forcing`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
 
 pub mod boundary;
 pub mod case;
 pub mod diagnostics;
 pub mod domain;
 pub mod error;
+pub mod forcing;
 pub mod geometry;
 pub mod io;
 pub mod neighbours;

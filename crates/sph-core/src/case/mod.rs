@@ -3,6 +3,7 @@
 //! naming the key, the value and what was expected ([`toml_errors`] for what serde and
 //! the TOML parser report). All quantities are SI.
 
+pub mod expression;
 pub mod json_schema;
 mod open_boundaries;
 mod schema;

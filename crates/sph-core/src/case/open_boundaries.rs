@@ -36,8 +36,9 @@ pub enum Profile {
     /// `velocity` everywhere.
     #[default]
     Uniform,
-    /// `velocity · Π 4 s(1 - s)` over the transverse axes, `s` running from 0 to 1
-    /// across the fluid's section in the buffer (laminar channel flow in 2D).
+    /// Laminar (Poiseuille) flow across the fluid's section in the buffer, `velocity`
+    /// at its centre: `4 s(1 - s)` between plates (2D, `s` from 0 to 1 across), the
+    /// exact series solution in a rectangular duct (3D).
     Parabolic,
 }
 

@@ -38,6 +38,9 @@ pub struct Case {
     pub open_boundary: Vec<OpenBoundaryConfig>,
     #[serde(default)]
     pub initial: Option<InitialField>,
+    /// A body force besides gravity, varying in space and time.
+    #[serde(default)]
+    pub forcing: Option<ForcingConfig>,
     #[serde(default)]
     pub scheme: SchemeConfig,
     pub time: TimeConfig,
@@ -617,6 +620,24 @@ pub struct SensorConfig {
     /// `<name>_filtered`; its state is kept in restart files. Default: none.
     #[serde(default)]
     pub cutoff: Option<f64>,
+}
+
+/// A body force per unit mass [m/s²] on the fluid, added to gravity: one expression per
+/// component, of the position (`x`, `y`, and `z` in 3D), the time `t`, `rho0` and the
+/// named `constants` (exmex syntax, as in `[initial]`; `PI` is π). For example the
+/// forced cell array of Antuono et al. (2021), `A r(t) (sin kx cos ky, -cos kx sin ky)`.
+/// Evaluated at every fluid particle in every force evaluation, at the stage's time.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ForcingConfig {
+    /// Named values for the expressions (a table), such as `{ A = 1.3, k = 25.13 }`.
+    #[serde(default)]
+    pub constants: Option<std::collections::BTreeMap<String, f64>>,
+    /// The acceleration [m/s²] added to every fluid particle, one expression per
+    /// component, of the position (`x`, `y`, `z`), the time `t`, `rho0` and the
+    /// `constants`, evaluated at each force evaluation's time (exmex syntax: `PI`, `min`,
+    /// `max`, `signum`, `sin`, ...). Finite at every fluid particle at t = 0, or refused.
+    pub acceleration: Vec<String>,
 }
 
 /// What a run writes besides snapshots and the time series.

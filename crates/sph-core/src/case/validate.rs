@@ -180,6 +180,7 @@ impl Case {
             }
             None => {}
         }
+        self.validate_forcing()?;
         self.check_particle_count()?;
         self.validate_scheme()?;
         positive("time.end", self.time.end)?;
@@ -454,6 +455,26 @@ impl Case {
                      about {total:.1e})"
                 ),
             ));
+        }
+        Ok(())
+    }
+
+    /// One expression per component and finite constants; the expressions themselves
+    /// are parsed when the run is built.
+    fn validate_forcing(&self) -> Result<()> {
+        let Some(forcing) = &self.forcing else {
+            return Ok(());
+        };
+        let d = self.dimension;
+        if forcing.acceleration.len() != d {
+            return Err(SphError::invalid(
+                "forcing.acceleration",
+                format!("{:?}", forcing.acceleration),
+                format!("{d} expressions, one per component"),
+            ));
+        }
+        for (name, value) in forcing.constants.iter().flatten() {
+            finite(&format!("forcing.constants.{name}"), *value)?;
         }
         Ok(())
     }

@@ -15,6 +15,7 @@ use crate::diagnostics::sensors::Sensor;
 use crate::diagnostics::{self, Energies};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
+use crate::forcing::BodyForce;
 use crate::geometry;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
@@ -101,6 +102,8 @@ pub struct Simulation<const D: usize> {
     sensors: Vec<Sensor<D>>,
     /// Inflow and outflow buffers, when the case has any.
     open: Option<OpenBoundaries<D>>,
+    /// The body force besides gravity, when the case has one.
+    forcing: Option<BodyForce<D>>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -143,6 +146,7 @@ impl<const D: usize> Simulation<D> {
             .collect();
         check_inflow_speeds(&case, setup.eos.c0)?;
         let open = OpenBoundaries::of(&case, &setup.particles, &setup.domain, &setup.eos)?;
+        let forcing = BodyForce::of(&case, &setup.particles)?;
         let mut sim = Self {
             case,
             particles: setup.particles,
@@ -161,6 +165,7 @@ impl<const D: usize> Simulation<D> {
             bodies: setup.bodies,
             sensors,
             open,
+            forcing,
         };
         sim.rebuild(0.0);
         sim.state_changed();
@@ -367,8 +372,9 @@ impl<const D: usize> Simulation<D> {
             domain: &self.domain,
             open: self.open.as_ref(),
             time: self.time,
+            forcing: self.forcing.as_ref(),
         };
-        cx.evaluate(&mut self.particles, &mut rates, true);
+        cx.evaluate(&mut self.particles, &mut rates, true, 0.0);
         rates
     }
 
@@ -430,6 +436,7 @@ impl<const D: usize> Simulation<D> {
             domain: &self.domain,
             open: self.open.as_ref(),
             time: self.time,
+            forcing: self.forcing.as_ref(),
         };
         let a_max = self
             .integrator
@@ -516,6 +523,9 @@ impl<const D: usize> Simulation<D> {
         }
         if case.scheme.turbulence == crate::case::TurbulenceChoice::DeltaLes {
             why.push("δ-LES-SPH's shifting velocity δu moves particles without a power term");
+        }
+        if self.forcing.is_some() {
+            why.push("the body force of [forcing] does work that no power term counts");
         }
         if self.open.is_some() {
             why.push("open boundaries set the buffers' state and add fluid without a flux term");

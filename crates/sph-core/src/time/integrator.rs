@@ -19,6 +19,7 @@
 
 use crate::boundary::open::OpenBoundaries;
 use crate::domain::Domain;
+use crate::forcing::BodyForce;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::scheme::model::{Model, Rates};
@@ -33,17 +34,29 @@ pub struct Context<'a, const D: usize> {
     /// (their inflow velocity is held over the step).
     pub open: Option<&'a OpenBoundaries<D>>,
     pub time: f64,
+    /// The case's body force field besides gravity, when it has one.
+    pub forcing: Option<&'a BodyForce<D>>,
 }
 
 impl<const D: usize> Context<'_, D> {
     /// The rates at the particles' state (see [`Model::evaluate`]), with the buffer
-    /// particles of open boundaries set before and held after.
-    pub fn evaluate(&mut self, p: &mut Particles<D>, rates: &mut Rates<D>, with_diffusion: bool) {
+    /// particles of open boundaries set before and held after, and the body force at
+    /// the state's time, `elapsed` after the step's start.
+    pub fn evaluate(
+        &mut self,
+        p: &mut Particles<D>,
+        rates: &mut Rates<D>,
+        with_diffusion: bool,
+        elapsed: f64,
+    ) {
         if let Some(open) = self.open {
             open.prepare(p, self.list, self.domain, &*self.model, self.time);
         }
         self.model
             .evaluate(p, self.list, self.domain, rates, with_diffusion);
+        if let Some(forcing) = self.forcing {
+            forcing.add(p, self.time + elapsed, &mut rates.du);
+        }
         if let Some(open) = self.open {
             open.hold(p, rates);
         }
@@ -165,17 +178,17 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
     }
 
     fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
-        cx.evaluate(p, &mut self.rates, true);
+        cx.evaluate(p, &mut self.rates, true, 0.0);
         &self.rates
     }
 
     fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
         self.first_stage(p, 0.5 * dt);
-        cx.evaluate(p, &mut self.rates, false);
+        cx.evaluate(p, &mut self.rates, false, 0.5 * dt);
         self.stage(p, 2.0, 0.5 * dt);
-        cx.evaluate(p, &mut self.rates, false);
+        cx.evaluate(p, &mut self.rates, false, 0.5 * dt);
         self.stage(p, 2.0, dt);
-        cx.evaluate(p, &mut self.rates, false);
+        cx.evaluate(p, &mut self.rates, false, dt);
         let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         let (ax, au, ar, d0) = (&self.acc_x, &self.acc_u, &self.acc_rho, &self.diff0);
         let s = dt / 6.0;
@@ -204,7 +217,7 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
     }
 
     fn begin(&mut self, p: &mut Particles<D>, cx: &mut Context<D>) -> &Rates<D> {
-        cx.evaluate(p, &mut self.rates, true);
+        cx.evaluate(p, &mut self.rates, true, 0.0);
         &self.rates
     }
 
@@ -221,7 +234,7 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
                 *u += r.du[i] * half;
                 *rho += (r.drho[i] + r.drho_diff[i]) * half;
             });
-        cx.evaluate(p, &mut self.rates, true);
+        cx.evaluate(p, &mut self.rates, true, half);
         let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())

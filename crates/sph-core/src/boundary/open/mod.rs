@@ -5,7 +5,8 @@
 //! open axis, over the whole end or over a `section` of it (a jet's nozzle). Its particles are fluid particles that take part in every pair sum (so
 //! the fluid next to the buffer sees a full kernel support), but whose state is set
 //! rather than integrated:
-//! - **inlet**: velocity prescribed, `u = U f(s) min(t/T, 1)` (profile f, ramp T, held
+//! - **inlet**: velocity prescribed, `u = U f(s) min(t/T, 1)` (profile f, uniform or
+//!   Poiseuille's across plates or a rectangular duct, [`profile`]; ramp T, held
 //!   over each step); density extrapolated from the fluid at the point mirrored across
 //!   the buffer's inner face, `ρ_b = Σ_j ρ_j W(x_m - x_j) V_j / Σ_j W(x_m - x_j) V_j`
 //!   over the fluid outside the buffers (zero normal gradient);
@@ -25,6 +26,7 @@
 //! be reached by the fluid.
 
 mod checks;
+mod profile;
 
 use crate::case::{Case, OpenKind, Profile};
 use crate::domain::Domain;
@@ -101,13 +103,13 @@ impl<const D: usize> Buffer<D> {
             1.0
         };
         let shape = profile.map_or(1.0, |(lo, hi)| {
-            (0..D)
-                .filter(|&d| d != self.axis)
-                .map(|d| {
-                    let s = ((x[d] - lo[d]) / (hi[d] - lo[d])).clamp(0.0, 1.0);
-                    4.0 * s * (1.0 - s)
-                })
-                .product()
+            let across: Vec<usize> = (0..D).filter(|&d| d != self.axis).collect();
+            let s = |d: usize| (x[d] - lo[d]) / (hi[d] - lo[d]);
+            match across[..] {
+                [d] => profile::channel(s(d)),
+                [d, e] => profile::duct([s(d), s(e)], [hi[d] - lo[d], hi[e] - lo[e]]),
+                _ => 1.0,
+            }
         });
         Some(velocity * (shape * ramped))
     }

@@ -7,6 +7,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1};
 use signal_hook::flag;
 use sph_core::case::{ShiftingChoice, TurbulenceChoice};
+use sph_core::decomposition::Decomposition;
 use sph_core::io::output::Output;
 use sph_core::io::restart;
 use sph_core::run::{Control, Ending, Run};
@@ -66,6 +67,11 @@ enum Command {
     Check {
         /// The case file.
         case: PathBuf,
+        /// Also show how this many processes would split the case (recursive
+        /// coordinate bisection on the fluid particles): each one's box, particles and
+        /// halo within the kernel support, and the load imbalance.
+        #[arg(long, value_name = "P", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+        ranks: Option<u32>,
     },
     /// Write the initial particles of a case (an HDF5/XDMF snapshot for ParaView and,
     /// in 2D, preview.png) without running it.
@@ -167,7 +173,7 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
                 (None, None) => unreachable!("clap requires a case or --restart"),
             }
         }
-        Command::Check { case } => check(&case),
+        Command::Check { case, ranks } => check(&case, ranks),
         Command::Preview { case, out, force } => preview(&case, out, force),
         Command::Schema => {
             print!("{}", sph_core::case::json_schema::case_schema());
@@ -206,11 +212,11 @@ fn preview_into<const D: usize>(
     Ok(sph_core::io::preview::write(&sim, &mut output)?)
 }
 
-fn check(path: &Path) -> Result<()> {
+fn check(path: &Path, ranks: Option<u32>) -> Result<()> {
     let case = Case::from_file(path)?;
     let (summary, report) = match case.dimension {
-        2 => describe::<2>(&case)?,
-        _ => describe::<3>(&case)?,
+        2 => describe::<2>(&case, ranks)?,
+        _ => describe::<3>(&case, ranks)?,
     };
     println!(
         "{}: valid {}D case '{}': {summary}\n{report}",
@@ -221,15 +227,21 @@ fn check(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The particle counts, and the report of what each region built.
-fn describe<const D: usize>(case: &Case) -> Result<(String, String)> {
+/// The particle counts, and the report of what each region built (and of the split
+/// among `ranks` processes).
+fn describe<const D: usize>(case: &Case, ranks: Option<u32>) -> Result<(String, String)> {
     let setup = sph_core::geometry::build::<D>(case)?;
     let mut report = setup.report(case.dx(), case.support());
     let sim = Simulation::<D>::new(case.clone())?;
     if let Some(open) = sim.open_boundaries() {
         report.push_str(&open.describe(sim.particles()));
     }
-
+    if let Some(ranks) = ranks {
+        let (p, domain) = (sim.particles(), sim.domain());
+        let split = Decomposition::bisect(p, domain, ranks as usize);
+        report.push_str(&format!("split among {ranks} processes:\n"));
+        report.push_str(&split.describe(p, domain, case.support()));
+    }
     let (fluid, all) = (sim.n_fluid(), sim.particles().len());
     let summary = format!("{fluid} fluid and {} wall particles", all - fluid);
     Ok((summary, report))

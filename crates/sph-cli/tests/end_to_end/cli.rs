@@ -23,6 +23,33 @@ fn every_example_passes_check() {
     }
 }
 
+/// `check --ranks P` splits the 2D dam break's 5000 fluid particles among P processes:
+/// one line per process whose fluid counts add up to the case's, and the imbalance;
+/// `--ranks 0` is refused.
+#[test]
+fn check_reports_the_split_among_processes() {
+    let out = cli(&["check", &example("dam_break_2d.toml"), "--ranks", "3"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let fluid: Vec<usize> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("rank "))
+        .map(|l| {
+            let (head, _) = l.split_once(" fluid").unwrap();
+            head.rsplit(' ').next().unwrap().parse().unwrap()
+        })
+        .collect();
+    assert_eq!(fluid.len(), 3, "{text}");
+    assert_eq!(fluid.iter().sum::<usize>(), 5000, "{text}");
+    assert!(text.contains("imbalance"), "{text}");
+    let refused = cli(&["check", &example("dam_break_2d.toml"), "--ranks", "0"]);
+    assert_eq!(refused.status.code(), Some(2));
+}
+
 #[test]
 fn bad_input_gives_one_clear_line_and_no_panic() {
     let dir = scratch("bad");

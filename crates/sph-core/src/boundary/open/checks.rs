@@ -19,11 +19,40 @@ impl<const D: usize> OpenBoundaries<D> {
             let key = format!("open_boundary[{k}]");
             match b.flow {
                 Flow::Inflow { .. } => check_inlet(&key, b, p, self.dx)?,
-                Flow::Outflow { .. } => check_reachable(&key, b, p, domain, self.dx)?,
+                Flow::Outflow { extrapolated, .. } => {
+                    check_reachable(&key, b, p, domain, self.dx)?;
+                    if !extrapolated {
+                        check_moving(&key, b, p)?;
+                    }
+                }
             }
         }
         Ok(())
     }
+}
+
+/// An outlet that keeps its particles' velocity needs them leaving at the start: a
+/// buffer whose fluid moves on average no faster than 1% of its fastest particle
+/// outward (a flow started from rest, ramped up at the inlet) would stay where it is
+/// and block the flow.
+fn check_moving<const D: usize>(key: &str, b: &Buffer<D>, p: &Particles<D>) -> Result<()> {
+    let outward: Vec<f64> = (0..p.len())
+        .filter(|&i| p.kind[i] == Kind::Fluid && b.holds(&p.x[i]))
+        .map(|i| -b.inward * p.u[i][b.axis])
+        .collect();
+    let fastest = p.u.iter().map(|u| u.norm()).fold(0.0, f64::max);
+    let mean = outward.iter().sum::<f64>() / outward.len().max(1) as f64;
+    if outward.is_empty() || mean > 0.01 * fastest.max(f64::MIN_POSITIVE) {
+        return Ok(());
+    }
+    Err(SphError::invalid(
+        format!("{key}.outflow_velocity"),
+        "kept",
+        format!(
+            "\"extrapolated\" for an outlet whose fluid does not leave at the start (mean \
+             outward speed {mean:.3e} m/s): kept, its particles would never leave"
+        ),
+    ))
 }
 
 fn rounded<const D: usize>(x: &Vector<D>) -> Vec<f64> {

@@ -11,7 +11,8 @@
 //!   the buffer's inner face, `ρ_b = Σ_j ρ_j W(x_m - x_j) V_j / Σ_j W(x_m - x_j) V_j`
 //!   over the fluid outside the buffers (zero normal gradient);
 //! - **outlet**: density from the prescribed pressure (`ρ = ρ(p_out)` by the EOS);
-//!   the velocity a particle had when it entered, kept.
+//!   the velocity a particle had when it entered, kept, or (`outflow_velocity =
+//!   "extrapolated"`) the fluid's at the mirrored point, as the inlet's density.
 //!
 //! Membership is by position, so it needs no per-particle flag and survives the
 //! lists' reordering and a restart. Particles enter and leave when the neighbour
@@ -23,12 +24,13 @@
 //! the buffer full meanwhile.
 //!
 //! The start is checked ([`checks`]): an inlet holds fluid and no wall, an outlet can
-//! be reached by the fluid.
+//! be reached by the fluid, and one that keeps its particles' velocity does not start
+//! at rest.
 
 mod checks;
 mod profile;
 
-use crate::case::{Case, OpenKind, Profile};
+use crate::case::{Case, OpenKind, OutflowVelocity, Profile};
 use crate::domain::Domain;
 use crate::error::Result;
 use crate::neighbours::NeighbourList;
@@ -67,6 +69,8 @@ enum Flow<const D: usize> {
     },
     Outflow {
         density: f64,
+        /// Whether the velocity is extrapolated from the fluid (or kept).
+        extrapolated: bool,
     },
 }
 
@@ -154,11 +158,16 @@ impl<const D: usize> OpenBoundaries<D> {
                     width: b.width_in(case),
                     lo,
                     hi,
-                    flow: Flow::Outflow { density: 0.0 },
+                    flow: Flow::Outflow {
+                        density: 0.0,
+                        extrapolated: false,
+                    },
                 };
                 buffer.flow = match b.kind {
                     OpenKind::Outlet => Flow::Outflow {
                         density: eos.density(b.pressure.unwrap_or(0.0)),
+                        extrapolated: b.outflow_velocity.unwrap_or_default()
+                            == OutflowVelocity::Extrapolated,
                     },
                     OpenKind::Inlet => Flow::Inflow {
                         velocity: Vector::from_iterator(b.velocity.iter().flatten().copied()),
@@ -223,12 +232,18 @@ impl<const D: usize> OpenBoundaries<D> {
             .into_par_iter()
             .map(|i| {
                 let buffer = self.buffer_of(p, i)?;
+                let mirrored = || self.extrapolate(p, list, domain, model, &buffer.mirror(&p.x[i]));
                 Some(match buffer.flow {
-                    Flow::Outflow { density } => (None, density),
+                    Flow::Outflow {
+                        density,
+                        extrapolated,
+                    } => {
+                        let u = extrapolated.then(mirrored).flatten().map(|(_, u)| u);
+                        (u, density)
+                    }
                     Flow::Inflow { .. } => {
-                        let m = buffer.mirror(&p.x[i]);
-                        let rho = self.extrapolate(p, list, domain, model, &m);
-                        (buffer.inflow(&p.x[i], t), rho.unwrap_or(p.rho[i]))
+                        let rho = mirrored().map_or(p.rho[i], |(rho, _)| rho);
+                        (buffer.inflow(&p.x[i], t), rho)
                     }
                 })
             })
@@ -246,7 +261,8 @@ impl<const D: usize> OpenBoundaries<D> {
             });
     }
 
-    /// Shepard interpolation of the density of the fluid outside the buffers at `x`.
+    /// Shepard interpolation of the density and the velocity of the fluid outside the
+    /// buffers at `x`.
     fn extrapolate(
         &self,
         p: &Particles<D>,
@@ -254,9 +270,9 @@ impl<const D: usize> OpenBoundaries<D> {
         domain: &Domain<D>,
         model: &dyn Model<D>,
         x: &Vector<D>,
-    ) -> Option<f64> {
+    ) -> Option<(f64, Vector<D>)> {
         let radius = model.support_radius();
-        let (mut num, mut den) = (0.0, 0.0);
+        let (mut num, mut den, mut velocity) = (0.0, 0.0, Vector::<D>::zeros());
         list.for_candidates(x, |j| {
             if p.kind[j] != Kind::Fluid || self.buffers.iter().any(|b| b.holds(&p.x[j])) {
                 return;
@@ -265,10 +281,11 @@ impl<const D: usize> OpenBoundaries<D> {
             if r < radius {
                 let wv = model.w(r) * p.mass[j] / p.rho[j];
                 num += p.rho[j] * wv;
+                velocity += p.u[j] * wv;
                 den += wv;
             }
         });
-        (den > 0.0).then(|| num / den)
+        (den > 0.0).then(|| (num / den, velocity / den))
     }
 
     /// Zeroes the rates of the buffer particles: their state is what [`Self::prepare`]

@@ -31,3 +31,15 @@ def example(name, **overrides):
 def coarse_dam_break():
     """The 2D dam break at H/Δx = 20 (2000 fluid particles): seconds per hundred steps."""
     return example("dam_break_2d", particles__spacing=0.03)
+
+
+@pytest.fixture
+def ctrl_c():
+    """Ctrl-C raising KeyboardInterrupt, as in an interactive Python, also where the
+    tests were started with SIGINT ignored (a background job of a shell without job
+    control); restored afterwards."""
+    import signal
+
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)

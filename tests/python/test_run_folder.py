@@ -95,7 +95,7 @@ def test_run_folders_keep_what_users_own(tmp_path):
         ds.Simulation.from_toml(case).run(until=0.01, output_interval=0.005)
 
 
-def test_ctrl_c_in_a_folder_run_leaves_a_restart_that_continues_it(tmp_path):
+def test_ctrl_c_in_a_folder_run_leaves_a_restart_that_continues_it(tmp_path, ctrl_c):
     """Ctrl-C: a last snapshot and a restart file, then KeyboardInterrupt naming it; the
     restart continues to the same end state as an uninterrupted run."""
     case = case_file(tmp_path, end=100.0)

@@ -279,7 +279,7 @@ def test_interpreter_released_while_running():
     assert elapsed > 0.05 and counter[0] > 1000 * elapsed
 
 
-def test_ctrl_c_stops_between_steps():
+def test_ctrl_c_stops_between_steps(ctrl_c):
     sim = ds.Simulation(example("dam_break_2d"))
     timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()

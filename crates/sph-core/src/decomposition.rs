@@ -149,17 +149,18 @@ impl<const D: usize> Decomposition<D> {
     }
 
     /// The particles that process `rank` needs from the others: those it does not own
-    /// within `radius` of its box.
+    /// (`owners[i]` is particle i's, from [`Self::owner`]) within `radius` of its box.
     pub fn halo(
         &self,
         rank: usize,
         x: &[Vector<D>],
+        owners: &[usize],
         domain: &Domain<D>,
         radius: f64,
     ) -> Vec<usize> {
         let cell = self.boxes[rank];
         (0..x.len())
-            .filter(|&i| self.owner(&x[i]) != rank && cell.distance(&x[i], domain) < radius)
+            .filter(|&i| owners[i] != rank && cell.distance(&x[i], domain) < radius)
             .collect()
     }
 }
@@ -178,12 +179,11 @@ impl<const D: usize> Decomposition<D> {
         let mut text = String::new();
         let (mut most, mut halo_total) = (0usize, 0usize);
         let fluid_total = p.kind.iter().filter(|k| **k == Kind::Fluid).count();
+        let owners: Vec<usize> = p.x.iter().map(|x| self.owner(x)).collect();
         for rank in 0..self.ranks() {
-            let owned: Vec<usize> = (0..p.len())
-                .filter(|&i| self.owner(&p.x[i]) == rank)
-                .collect();
+            let owned: Vec<usize> = (0..p.len()).filter(|&i| owners[i] == rank).collect();
             let fluid = owned.iter().filter(|&&i| p.kind[i] == Kind::Fluid).count();
-            let halo = self.halo(rank, &p.x, domain, radius).len();
+            let halo = self.halo(rank, &p.x, &owners, domain, radius).len();
             (most, halo_total) = (most.max(fluid), halo_total + halo);
             let cell = self.cell(rank);
             text.push_str(&format!(
@@ -323,15 +323,11 @@ mod tests {
         for periodic in [[false, false], [true, true]] {
             let dom = domain(periodic);
             let split = Decomposition::bisect(&p, &dom, 4);
+            let owners: Vec<usize> = p.x.iter().map(|x| split.owner(x)).collect();
             for rank in 0..4 {
-                let halo = split.halo(rank, &p.x, &dom, radius);
-                let owned: Vec<usize> = (0..p.len())
-                    .filter(|&i| split.owner(&p.x[i]) == rank)
-                    .collect();
-                for j in 0..p.len() {
-                    if split.owner(&p.x[j]) == rank {
-                        continue;
-                    }
+                let halo = split.halo(rank, &p.x, &owners, &dom, radius);
+                let owned: Vec<usize> = (0..p.len()).filter(|&i| owners[i] == rank).collect();
+                for j in (0..p.len()).filter(|&j| owners[j] != rank) {
                     let near = owned
                         .iter()
                         .any(|&i| dom.separation(&p.x[i], &p.x[j]).norm() < radius);

@@ -63,8 +63,8 @@ struct Buffer<const D: usize> {
 enum Flow<const D: usize> {
     Inflow {
         velocity: Vector<D>,
-        /// The profile's span across the section: `(lo, hi)` per axis.
-        profile: Option<(Vector<D>, Vector<D>)>,
+        /// The laminar profile across the section, or none (uniform).
+        profile: Option<profile::Laminar>,
         ramp: f64,
     },
     Outflow {
@@ -106,15 +106,7 @@ impl<const D: usize> Buffer<D> {
         } else {
             1.0
         };
-        let shape = profile.map_or(1.0, |(lo, hi)| {
-            let across: Vec<usize> = (0..D).filter(|&d| d != self.axis).collect();
-            let s = |d: usize| (x[d] - lo[d]) / (hi[d] - lo[d]);
-            match across[..] {
-                [d] => profile::channel(s(d)),
-                [d, e] => profile::duct([s(d), s(e)], [hi[d] - lo[d], hi[e] - lo[e]]),
-                _ => 1.0,
-            }
-        });
+        let shape = profile.as_ref().map_or(1.0, |f| f.at(x.as_slice()));
         Some(velocity * (shape * ramped))
     }
 }
@@ -171,8 +163,10 @@ impl<const D: usize> OpenBoundaries<D> {
                     },
                     OpenKind::Inlet => Flow::Inflow {
                         velocity: Vector::from_iterator(b.velocity.iter().flatten().copied()),
-                        profile: (b.profile == Some(Profile::Parabolic))
-                            .then(|| section(&buffer, particles, dx)),
+                        profile: (b.profile == Some(Profile::Parabolic)).then(|| {
+                            let (lo, hi) = section(&buffer, particles, dx);
+                            profile::Laminar::across(b.axis, lo.as_slice(), hi.as_slice())
+                        }),
                         ramp: b.ramp.unwrap_or(0.0),
                     },
                 };

@@ -23,15 +23,80 @@ pub fn channel(s: f64) -> f64 {
     4.0 * s * (1.0 - s)
 }
 
-/// The duct profile at `s` ∈ [0, 1]² across a section of side lengths `sides`.
-pub fn duct(s: [f64; 2], sides: [f64; 2]) -> f64 {
-    let s = s.map(|v| v.clamp(0.0, 1.0));
-    // η across the narrower side (half-width a), ζ across the wider (b)
-    let (narrow, wide) = if sides[0] <= sides[1] { (0, 1) } else { (1, 0) };
-    let (a, b) = (0.5 * sides[narrow], 0.5 * sides[wide]);
-    let eta = (s[narrow] - 0.5) * sides[narrow];
-    let zeta = (s[wide] - 0.5) * sides[wide];
-    duct_series(eta, zeta, a, b) / duct_series(0.0, 0.0, a, b)
+/// The laminar profile across an inlet's section `[lo, hi]`, resolved once: the plates'
+/// parabola across one transverse axis (2D), the duct series across two (3D).
+pub enum Laminar {
+    Channel {
+        axis: usize,
+        lo: f64,
+        side: f64,
+    },
+    Duct {
+        axes: [usize; 2],
+        lo: [f64; 2],
+        duct: Duct,
+    },
+}
+
+impl Laminar {
+    /// The profile across every axis but `axis` of the section `[lo, hi]`.
+    pub fn across(axis: usize, lo: &[f64], hi: &[f64]) -> Self {
+        let mut others = (0..lo.len()).filter(|&d| d != axis);
+        let first = others.next().unwrap_or(0);
+        match others.next() {
+            None => Laminar::Channel {
+                axis: first,
+                lo: lo[first],
+                side: hi[first] - lo[first],
+            },
+            Some(second) => Laminar::Duct {
+                axes: [first, second],
+                lo: [lo[first], lo[second]],
+                duct: Duct::new([hi[first] - lo[first], hi[second] - lo[second]]),
+            },
+        }
+    }
+
+    /// The fraction of the centre-line velocity at position `x`.
+    pub fn at(&self, x: &[f64]) -> f64 {
+        match self {
+            Laminar::Channel { axis, lo, side } => channel((x[*axis] - lo) / side),
+            Laminar::Duct { axes, lo, duct } => {
+                duct.at([0, 1].map(|k| (x[axes[k]] - lo[k]) / duct.sides[k]))
+            }
+        }
+    }
+}
+
+/// A rectangular duct's profile, with its centre value computed once.
+pub struct Duct {
+    sides: [f64; 2],
+    /// Index of the narrower side (η runs across it).
+    narrow: usize,
+    centre: f64,
+}
+
+impl Duct {
+    /// The duct of side lengths `sides`.
+    pub fn new(sides: [f64; 2]) -> Self {
+        let narrow = if sides[0] <= sides[1] { 0 } else { 1 };
+        let (a, b) = (0.5 * sides[narrow], 0.5 * sides[1 - narrow]);
+        Duct {
+            sides,
+            narrow,
+            centre: duct_series(0.0, 0.0, a, b),
+        }
+    }
+
+    /// The profile at `s` ∈ [0, 1]² (clamped) across the two sides.
+    pub fn at(&self, s: [f64; 2]) -> f64 {
+        let s = s.map(|v| v.clamp(0.0, 1.0));
+        let (narrow, wide) = (self.narrow, 1 - self.narrow);
+        let (a, b) = (0.5 * self.sides[narrow], 0.5 * self.sides[wide]);
+        let eta = (s[narrow] - 0.5) * self.sides[narrow];
+        let zeta = (s[wide] - 0.5) * self.sides[wide];
+        duct_series(eta, zeta, a, b) / self.centre
+    }
 }
 
 /// The series of the module's formula at (η, ζ).
@@ -62,7 +127,8 @@ mod tests {
     fn the_duct_profile_is_poiseuille_flow() {
         let sides = [1.0, 2.0];
         let h = 1.0 / 200.0;
-        let u = |y: f64, z: f64| duct([y / sides[0], z / sides[1]], sides);
+        let duct = Duct::new(sides);
+        let u = |y: f64, z: f64| duct.at([y / sides[0], z / sides[1]]);
         let laplacian = |y: f64, z: f64| {
             (u(y + h, z) + u(y - h, z) + u(y, z + h) + u(y, z - h) - 4.0 * u(y, z)) / (h * h)
         };
@@ -87,11 +153,12 @@ mod tests {
     #[test]
     fn the_duct_profile_has_the_published_mean_and_the_channel_limit() {
         let m = 400;
+        let square = Duct::new([1.0, 1.0]);
         let mean = (0..m)
             .flat_map(|i| (0..m).map(move |j| (i, j)))
             .map(|(i, j)| {
                 let s = [(i as f64 + 0.5) / m as f64, (j as f64 + 0.5) / m as f64];
-                duct(s, [1.0, 1.0])
+                square.at(s)
             })
             .sum::<f64>()
             / (m * m) as f64;
@@ -100,8 +167,9 @@ mod tests {
             "u_max/u_mean = {}",
             1.0 / mean
         );
+        let flat = Duct::new([1.0, 20.0]);
         for s in [0.1, 0.25, 0.4] {
-            let wide = duct([s, 0.5], [1.0, 20.0]);
+            let wide = flat.at([s, 0.5]);
             assert!(
                 (wide - channel(s)).abs() < 1e-6,
                 "{wide} against {}",

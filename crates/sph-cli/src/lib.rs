@@ -18,6 +18,10 @@ use std::sync::atomic::{AtomicBool, AtomicUsize};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+mod processes;
+
+use processes::Processes;
+
 #[derive(Parser)]
 #[command(
     name = "sph-cli",
@@ -167,11 +171,18 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
                 checkpoint_every,
                 quiet,
             };
-            match (case, restart) {
-                (_, Some(file)) => resume(&file, options),
-                (Some(case), None) => run(&case, options),
-                (None, None) => unreachable!("clap requires a case or --restart"),
-            }
+            processes::join().and_then(|procs| {
+                let result = match (case, restart) {
+                    (_, Some(file)) => resume(&file, options, &procs),
+                    (Some(case), None) => run(&case, options, &procs),
+                    (None, None) => unreachable!("clap requires a case or --restart"),
+                };
+                // process 0 reports; the others end with the same status, quietly
+                result.map_err(|e| match procs.is_first() {
+                    true => e,
+                    false => without_message(e),
+                })
+            })
         }
         Command::Check { case, ranks } => check(&case, ranks),
         Command::Preview { case, out, force } => preview(&case, out, force),
@@ -183,11 +194,24 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
     match result {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("error: {e}");
+            let message = e.to_string();
+            if !message.is_empty() {
+                eprintln!("error: {message}");
+            }
             e.downcast_ref::<Failure>()
                 .map_or(2, |failure| failure.code)
         }
     }
+}
+
+/// `e` without its message (for the processes other than 0 of a split run).
+fn without_message(e: anyhow::Error) -> anyhow::Error {
+    let code = e.downcast_ref::<Failure>().map_or(2, |f| f.code);
+    Failure {
+        message: String::new(),
+        code,
+    }
+    .into()
 }
 
 fn preview(path: &Path, out: Option<PathBuf>, force: bool) -> Result<()> {
@@ -257,7 +281,7 @@ struct RunOptions {
     quiet: bool,
 }
 
-fn run(path: &Path, options: RunOptions) -> Result<()> {
+fn run(path: &Path, options: RunOptions, procs: &Processes) -> Result<()> {
     let mut case = Case::from_file(path)?;
     if let Some(end) = options.until {
         if !(end > 0.0 && end.is_finite()) {
@@ -269,24 +293,39 @@ fn run(path: &Path, options: RunOptions) -> Result<()> {
     // build first: a case that does not build leaves no folder behind
     let text = std::fs::read_to_string(path)?;
     match case.dimension {
-        2 => start(Simulation::<2>::new(case)?, &out, &text, &options),
-        _ => start(Simulation::<3>::new(case)?, &out, &text, &options),
+        2 => start(Simulation::<2>::new(case)?, &out, &text, &options, procs),
+        _ => start(Simulation::<3>::new(case)?, &out, &text, &options, procs),
     }
 }
 
+/// The share of this process when the run is split over several (the whole run
+/// otherwise).
+fn split<const D: usize>(sim: Simulation<D>, procs: &Processes) -> Result<Simulation<D>> {
+    Ok(match &procs.comm {
+        Some(comm) => sim.distribute(Arc::clone(comm))?,
+        None => sim,
+    })
+}
+
 fn start<const D: usize>(
-    mut sim: Simulation<D>,
+    sim: Simulation<D>,
     out: &Path,
     case_text: &str,
     options: &RunOptions,
+    procs: &Processes,
 ) -> Result<()> {
-    let mut output = Output::create(out, options.force)?;
-    output.write_text("case.toml", case_text)?;
+    let mut sim = split(sim, procs)?;
+    let output = procs.is_first().then(|| -> sph_core::Result<Output> {
+        let mut output = Output::create(out, options.force)?;
+        output.write_text("case.toml", case_text)?;
+        Ok(output)
+    });
+    let output = sph_core::run::agreed(output.transpose(), &sim)?;
     let run = Run::start(&mut sim, output)?;
-    drive(sim, run, options)
+    drive(sim, run, options, procs)
 }
 
-fn resume(file: &Path, options: RunOptions) -> Result<()> {
+fn resume(file: &Path, options: RunOptions, procs: &Processes) -> Result<()> {
     let dir = match options.out.clone() {
         Some(dir) => dir,
         None => file
@@ -295,18 +334,30 @@ fn resume(file: &Path, options: RunOptions) -> Result<()> {
             .unwrap_or_else(|| PathBuf::from(".")),
     };
     match restart::dimension(file)? {
-        2 => resume_in::<2>(file, &dir, options),
-        _ => resume_in::<3>(file, &dir, options),
+        2 => resume_in::<2>(file, &dir, options, procs),
+        _ => resume_in::<3>(file, &dir, options, procs),
     }
 }
 
-fn resume_in<const D: usize>(file: &Path, dir: &Path, options: RunOptions) -> Result<()> {
+/// Continues a run from a restart file, on any number of processes (every process
+/// reads the file and keeps its share).
+fn resume_in<const D: usize>(
+    file: &Path,
+    dir: &Path,
+    options: RunOptions,
+    procs: &Processes,
+) -> Result<()> {
     let (checkpoint, schedule) = restart::read::<D>(file)?;
     let sim = Simulation::<D>::from_checkpoint(checkpoint, options.until)?;
-    let mut output = Output::resume(dir, schedule.snapshots, options.force)?;
-    output.resume_series(&sim.series_header(), sim.time())?;
+    let sim = split(sim, procs)?;
+    let output = procs.is_first().then(|| -> sph_core::Result<Output> {
+        let mut output = Output::resume(dir, schedule.snapshots, options.force)?;
+        output.resume_series(&sim.series_header(), sim.time())?;
+        Ok(output)
+    });
+    let output = sph_core::run::agreed(output.transpose(), &sim)?;
     let run = Run::resume(&sim, output, schedule);
-    drive(sim, run, &options)
+    drive(sim, run, &options, procs)
 }
 
 fn progress_bar(quiet: bool) -> ProgressBar {
@@ -335,9 +386,14 @@ fn stop_signal() -> Result<Arc<AtomicUsize>> {
 }
 
 /// Drives the run, prints the summary and turns its ending into the exit status.
-fn drive<const D: usize>(mut sim: Simulation<D>, mut run: Run, options: &RunOptions) -> Result<()> {
+fn drive<const D: usize>(
+    mut sim: Simulation<D>,
+    mut run: Run,
+    options: &RunOptions,
+    procs: &Processes,
+) -> Result<()> {
     let signal = stop_signal()?;
-    let bar = progress_bar(options.quiet);
+    let bar = progress_bar(options.quiet || !procs.is_first());
     let start = Instant::now();
     let first_step = sim.counters().steps;
     let end = sim.case().time.end;
@@ -361,16 +417,24 @@ fn drive<const D: usize>(mut sim: Simulation<D>, mut run: Run, options: &RunOpti
         },
     );
     bar.finish_and_clear();
-    summary(&sim, &run);
+    let processes = process_report(&sim, run.wall.as_secs_f64());
+    if let Some(view) = sim.view() {
+        summary(view, &run);
+        print!("{}", processes.unwrap_or_default());
+    }
     let (time, step) = (sim.time(), sim.counters().steps);
     let failure = |code: u8, message: String| Err(Failure { message, code }.into());
     match ending {
         Ending::Finished { restart } => {
-            println!("restart         {}", restart.display());
+            if procs.is_first() {
+                println!("restart         {}", restart.display());
+            }
             Ok(())
         }
         Ending::Stopped { signal, restart } => {
-            println!("restart         {}", restart.display());
+            if procs.is_first() {
+                println!("restart         {}", restart.display());
+            }
             failure(
                 128 + signal as u8,
                 format!(
@@ -385,6 +449,7 @@ fn drive<const D: usize>(mut sim: Simulation<D>, mut run: Run, options: &RunOpti
         Ending::Paused => unreachable!("a run without a slice is never paused"),
         Ending::Unstable { error, snapshot } => {
             match snapshot {
+                _ if !procs.is_first() => {}
                 Ok(path) => println!(
                     "last snapshot   {} (the state at which the run stopped)",
                     path.display()
@@ -436,8 +501,54 @@ fn scheme_line<const D: usize>(sim: &Simulation<D>) -> String {
     parts.join(", ")
 }
 
+/// Per process of a split run: its fluid particles and halo, the halo refreshes and
+/// their bytes, and its time in communication against the run's `wall` time; then the
+/// load imbalance (`None` when the run is not split). Collective.
+fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<String> {
+    const FIELDS: usize = 6;
+    let ranks = sim.ranks()?;
+    let (rank, size) = (ranks.rank(), ranks.size());
+    let t = ranks.traffic();
+    let own = (0..sim.particles().len()).filter(|&i| ranks.owned()[i]);
+    let fluid = own
+        .filter(|&i| sim.particles().kind[i] == sph_core::Kind::Fluid)
+        .count();
+    let mut table = vec![0.0; FIELDS * size];
+    table[FIELDS * rank..][..FIELDS].copy_from_slice(&[
+        fluid as f64,
+        ranks.halo_len() as f64,
+        t.refreshes as f64,
+        t.refresh_bytes as f64,
+        t.seconds,
+        t.rebalances as f64,
+    ]);
+    ranks.sum(&mut table);
+    let rows: Vec<&[f64]> = table.chunks(FIELDS).collect();
+    let mean = rows.iter().map(|r| r[0]).sum::<f64>() / size as f64;
+    let most = rows.iter().map(|r| r[0]).fold(0.0, f64::max);
+    let mut text = format!(
+        "processes       {size} (recursive coordinate bisection, rebalanced {} times); \
+         imbalance {:.3} at the end (largest fluid share over the mean)\n",
+        rows[0][5],
+        most / mean.max(1.0)
+    );
+    for (r, row) in rows.iter().enumerate() {
+        text.push_str(&format!(
+            "  process {r:<4} {:.0} fluid, halo {:.0}; {:.0} halo refreshes of {:.1} kB sent; \
+             communication {:.2} s of {wall:.2} s ({:.1}%)\n",
+            row[0],
+            row[1],
+            row[2],
+            row[3] / row[2].max(1.0) / 1e3,
+            row[4],
+            100.0 * row[4] / wall.max(1e-12),
+        ));
+    }
+    Some(text)
+}
+
 fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
-    let (output, since) = (&run.output, run.since);
+    let since = run.since;
     let wall = run.wall.as_secs_f64();
     let n = sim.n_fluid();
     let c = sim.counters();
@@ -507,8 +618,10 @@ fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
             );
         }
     }
-    println!(
-        "output          {} (open particles.xmf in ParaView)",
-        output.dir().display()
-    );
+    if let Some(output) = &run.output {
+        println!(
+            "output          {} (open particles.xmf in ParaView)",
+            output.dir().display()
+        );
+    }
 }

@@ -22,6 +22,8 @@ use crate::particles::{Kind, Particles, Vector};
 pub struct Decomposition<const D: usize> {
     nodes: Vec<Node>,
     boxes: Vec<Cell<D>>,
+    /// The box that was cut.
+    whole: Cell<D>,
 }
 
 /// A subdomain: the box `[lo, hi]` of one process.
@@ -63,20 +65,26 @@ impl<const D: usize> Decomposition<D> {
     /// particle weighing 1 (see the module). `ranks` ≥ 1; a domain open along some
     /// direction is bounded there by the particles' extent.
     pub fn bisect(particles: &Particles<D>, domain: &Domain<D>, ranks: usize) -> Self {
+        Self::bisect_points(&particles.x, &particles.kind, domain, ranks)
+    }
+
+    /// [`Self::bisect`] of the particles at `x` of kinds `kind`.
+    pub fn bisect_points(x: &[Vector<D>], kind: &[Kind], domain: &Domain<D>, ranks: usize) -> Self {
         let ranks = ranks.max(1);
-        let weights: Vec<f64> = (particles.kind.iter())
+        let weights: Vec<f64> = (kind.iter())
             .map(|k| if *k == Kind::Fluid { 1.0 } else { 0.0 })
             .collect();
-        let points: Vec<usize> = (0..particles.len()).collect();
+        let points: Vec<usize> = (0..x.len()).collect();
         let whole = Cell {
-            lo: Vector::from_fn(|d, _| bound(domain.lo[d], &particles.x, d, f64::min)),
-            hi: Vector::from_fn(|d, _| bound(domain.hi[d], &particles.x, d, f64::max)),
+            lo: Vector::from_fn(|d, _| bound(domain.lo[d], x, d, f64::min)),
+            hi: Vector::from_fn(|d, _| bound(domain.hi[d], x, d, f64::max)),
         };
         let mut split = Self {
             nodes: Vec::new(),
             boxes: vec![whole; ranks],
+            whole,
         };
-        split.cut(&particles.x, &weights, points, whole, 0..ranks);
+        split.cut(x, &weights, points, whole, 0..ranks);
         split
     }
 
@@ -146,6 +154,37 @@ impl<const D: usize> Decomposition<D> {
                 } => node = if x[axis] < at { below } else { above },
             }
         }
+    }
+
+    /// The distance from `x` to the region process `rank` owns: its box, open beyond
+    /// the faces it shares with the whole box along non-periodic directions (a particle
+    /// that moves out of the whole box stays with the process below or above the cuts),
+    /// by minimum image along periodic ones.
+    pub fn region_distance(&self, rank: usize, x: &Vector<D>, domain: &Domain<D>) -> f64 {
+        let cell = &self.boxes[rank];
+        let centre = (cell.lo + cell.hi) * 0.5;
+        let offset = domain.separation(x, &centre);
+        (0..D)
+            .map(|d| {
+                let gap = if domain.is_periodic(d) {
+                    offset[d].abs() - 0.5 * (cell.hi[d] - cell.lo[d])
+                } else {
+                    let lo = if cell.lo[d] <= self.whole.lo[d] {
+                        f64::NEG_INFINITY
+                    } else {
+                        cell.lo[d]
+                    };
+                    let hi = if cell.hi[d] >= self.whole.hi[d] {
+                        f64::INFINITY
+                    } else {
+                        cell.hi[d]
+                    };
+                    (lo - x[d]).max(x[d] - hi)
+                };
+                gap.max(0.0).powi(2)
+            })
+            .sum::<f64>()
+            .sqrt()
     }
 
     /// The particles that process `rank` needs from the others: those it does not own

@@ -8,13 +8,14 @@
 //! run folder by [`run::Run`].
 //!
 //! Modules by concept, each depending only on those listed before it: [`particles`],
-//! [`domain`] → [`decomposition`], [`neighbours`] → [`physics`] → [`boundary`] → [`case`] → [`scheme`],
+//! [`domain`] → [`decomposition`] → [`distributed`], [`neighbours`] → [`physics`] → [`boundary`] → [`case`] → [`scheme`],
 //! [`geometry`], [`forcing`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
 
 pub mod boundary;
 pub mod case;
 pub mod decomposition;
 pub mod diagnostics;
+pub mod distributed;
 pub mod domain;
 pub mod error;
 pub mod forcing;

@@ -12,6 +12,11 @@
 //! Writing output and restart files changes nothing the next step depends on, so a run
 //! gives the same bits whatever its output intervals, and a run continued from any of
 //! its restart files is the uninterrupted run bit for bit.
+//!
+//! A run split over processes is driven alike on every process: output is written
+//! from the whole run gathered on process 0 ([`Simulation::view`]), the only one with
+//! a run folder, and the decisions that end the loop (a stop request, a failed write,
+//! a restart file due on wall time) are agreed by all processes at every step.
 
 use crate::error::{Result, SphError};
 use crate::io::output::Output;
@@ -58,7 +63,8 @@ pub enum Ending {
 /// The run folder of a simulation and its output schedule. The simulation is passed
 /// to each call, so that the front end keeps it (and can read it between calls).
 pub struct Run {
-    pub output: Output,
+    /// The run folder (on process 0 of a split run; `None` on the others).
+    pub output: Option<Output>,
     pub schedule: Schedule,
     /// Counters when this leg of the run started (a continued run counts from there).
     pub since: Counters,
@@ -72,26 +78,32 @@ pub struct Run {
 
 impl Run {
     /// A fresh run: the series header, the first row and the first snapshot.
-    pub fn start<const D: usize>(sim: &mut Simulation<D>, mut output: Output) -> Result<Self> {
-        output.start_series(&sim.series_header())?;
+    pub fn start<const D: usize>(sim: &mut Simulation<D>, output: Option<Output>) -> Result<Self> {
         let (snap_every, series_every) = intervals(sim);
         let t = sim.time();
+        let next_restart = t + sim.case().output.restart_interval.unwrap_or(f64::INFINITY);
+        let header = sim.series_header();
         let schedule = Schedule {
             next_snapshot: t + snap_every,
             next_series: t + series_every,
-            next_restart: t + sim.case().output.restart_interval.unwrap_or(f64::INFINITY),
+            next_restart,
             snapshots: 0,
             initial_energy: sim.energies().total(),
         };
         let mut run = Self::resume(sim, output, schedule);
-        let row = sim.series_values();
-        run.output.series_row(&row)?;
-        run.snapshot(sim)?;
+        let started = (run.output.as_mut()).map_or(Ok(()), |o| o.start_series(&header));
+        agreed(started, sim)?;
+        agreed(run.row(sim), sim)?;
+        agreed(run.snapshot(sim), sim)?;
         Ok(run)
     }
 
     /// A run continued from a restart file's simulation and schedule, in its folder.
-    pub fn resume<const D: usize>(sim: &Simulation<D>, output: Output, schedule: Schedule) -> Self {
+    pub fn resume<const D: usize>(
+        sim: &Simulation<D>,
+        output: Option<Output>,
+        schedule: Schedule,
+    ) -> Self {
         Self {
             since: sim.counters(),
             last_row: sim.time(),
@@ -102,19 +114,37 @@ impl Run {
         }
     }
 
-    fn snapshot<const D: usize>(&mut self, sim: &Simulation<D>) -> Result<PathBuf> {
-        let output = &mut self.output;
-        let steps = sim.counters().steps;
-        let path = crate::io::output::with_extras(sim, |extras| {
-            output.snapshot(sim.particles(), extras, sim.time(), steps)
-        })?;
+    /// Writes a time-series row (computed by every process of a split run).
+    fn row<const D: usize>(&mut self, sim: &mut Simulation<D>) -> Result<()> {
+        let row = sim.series_values();
+        (self.output.as_mut()).map_or(Ok(()), |output| output.series_row(&row))
+    }
+
+    /// Writes a snapshot, pressures refreshed (collective in a split run); the path is
+    /// empty on the processes that write nothing.
+    fn snapshot<const D: usize>(&mut self, sim: &mut Simulation<D>) -> Result<PathBuf> {
+        let path = match (sim.view(), self.output.as_mut()) {
+            (Some(view), Some(output)) => {
+                view.sync_pressure();
+                let view = &*view;
+                let steps = view.counters().steps;
+                crate::io::output::with_extras(view, |extras| {
+                    output.snapshot(view.particles(), extras, view.time(), steps)
+                })?
+            }
+            _ => PathBuf::new(),
+        };
         self.schedule.snapshots += 1;
         Ok(path)
     }
 
-    fn write_restart<const D: usize>(&mut self, sim: &Simulation<D>) -> Result<PathBuf> {
-        let checkpoint = sim.checkpoint()?;
-        self.output.write_restart(&checkpoint, &self.schedule)
+    /// Writes a restart file (collective in a split run); the path is empty on the
+    /// processes that write nothing.
+    fn write_restart<const D: usize>(&mut self, sim: &mut Simulation<D>) -> Result<PathBuf> {
+        match (sim.view(), self.output.as_mut()) {
+            (Some(view), Some(output)) => output.write_restart(&view.checkpoint()?, &self.schedule),
+            _ => Ok(PathBuf::new()),
+        }
     }
 
     /// The series row and snapshot due after the step just taken.
@@ -126,14 +156,12 @@ impl Run {
     ) -> Result<bool> {
         let mut wrote_row = false;
         if sim.time() >= self.schedule.next_series {
-            let row = sim.series_values();
-            self.output.series_row(&row)?;
+            self.row(sim)?;
             self.schedule.next_series += series_every;
             wrote_row = true;
         }
         let end = sim.case().time.end;
         if snap_every > 0.0 && sim.time() >= self.schedule.next_snapshot && sim.time() < end {
-            sim.sync_pressure();
             self.snapshot(sim)?;
             self.schedule.next_snapshot += snap_every;
         }
@@ -149,10 +177,9 @@ impl Run {
                 self.schedule.next_restart += every;
             }
         }
-        on_time
-            || control
-                .checkpoint_every
-                .is_some_and(|every| self.last_restart.elapsed() >= every)
+        let on_wall_time =
+            (control.checkpoint_every).is_some_and(|every| self.last_restart.elapsed() >= every);
+        on_time || sim.max_over_processes(f64::from(u8::from(on_wall_time))) > 0.0
     }
 
     /// Steps to the end time (or step cap, or a stop request), writing output on its
@@ -167,8 +194,12 @@ impl Run {
         let max_steps = sim.case().time.max_steps.unwrap_or(u64::MAX);
         let start = Instant::now();
         let flag = control.stop;
-        let stop = || flag.load(Ordering::Relaxed);
-        while sim.time() < end * (1.0 - 1e-12) && sim.counters().steps < max_steps && stop() == 0 {
+        // a stop request on any process stops them all
+        let stop = |sim: &Simulation<D>| {
+            sim.max_over_processes(flag.load(Ordering::Relaxed) as f64) as usize
+        };
+        while sim.time() < end * (1.0 - 1e-12) && sim.counters().steps < max_steps && stop(sim) == 0
+        {
             if control.slice.is_some_and(|slice| start.elapsed() >= slice) {
                 self.wall += start.elapsed();
                 return Ending::Paused;
@@ -180,13 +211,14 @@ impl Run {
                     snapshot: self.snapshot(sim),
                 };
             }
-            match self.record(sim, series_every, snap_every) {
+            match agreed(self.record(sim, series_every, snap_every), sim) {
                 Ok(true) => self.last_row = sim.time(),
                 Ok(false) => {}
                 Err(error) => return self.output_failed(sim, error, start),
             }
             if self.restart_due(sim, control) {
-                if let Err(error) = self.write_restart(sim) {
+                let written = self.write_restart(sim);
+                if let Err(error) = agreed(written, sim) {
                     self.wall += start.elapsed();
                     return Ending::OutputFailed {
                         restart: Err(error.clone()),
@@ -198,16 +230,14 @@ impl Run {
             (control.on_step)(sim);
         }
         self.wall += start.elapsed();
-        sim.sync_pressure();
-        let signal = stop();
+        let signal = stop(sim);
         let closing = (|| -> Result<PathBuf> {
             if signal == 0 && sim.time() > self.last_row {
                 // the closing row (a stopped run gets it when it reaches its end)
-                let row = sim.series_values();
-                self.output.series_row(&row)?;
+                agreed(self.row(sim), sim)?;
             }
-            self.snapshot(sim)?;
-            self.write_restart(sim)
+            agreed(self.snapshot(sim), sim)?;
+            agreed(self.write_restart(sim), sim)
         })();
         match (closing, signal) {
             (Ok(restart), 0) => Ending::Finished { restart },
@@ -223,16 +253,31 @@ impl Run {
     /// makes room for a new one, which is written before the run stops.
     fn output_failed<const D: usize>(
         &mut self,
-        sim: &Simulation<D>,
+        sim: &mut Simulation<D>,
         error: SphError,
         start: Instant,
     ) -> Ending {
         self.wall += start.elapsed();
-        self.output.drop_previous_restart();
+        if let Some(output) = self.output.as_mut() {
+            output.drop_previous_restart();
+        }
         Ending::OutputFailed {
             error,
             restart: self.write_restart(sim),
         }
+    }
+}
+
+/// `result`, failed on every process of a split run when it failed on any (there, on
+/// process 0: the only one that writes). Collective in a split run.
+pub fn agreed<const D: usize, T>(result: Result<T>, sim: &Simulation<D>) -> Result<T> {
+    let failed_anywhere = sim.max_over_processes(f64::from(u8::from(result.is_err()))) > 0.0;
+    match result {
+        Ok(_) if failed_anywhere => Err(SphError::output(
+            "process 0",
+            "writing the run's output failed there (see its message)",
+        )),
+        other => other,
     }
 }
 

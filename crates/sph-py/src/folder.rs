@@ -69,20 +69,20 @@ impl Folder {
         let open = self
             .run
             .as_ref()
-            .is_some_and(|r| same_folder(r.output.dir(), out));
+            .is_some_and(|r| r.output.as_ref().is_some_and(|o| same_folder(o.dir(), out)));
         if !open {
             let run = match &self.restart {
                 Some((dir, schedule)) if same_folder(dir, out) => {
                     let mut output = Output::resume(out, schedule.snapshots, options.force)?;
                     output.resume_series(&sim.series_header(), sim.time())?;
-                    Run::resume(sim, output, *schedule)
+                    Run::resume(sim, Some(output), *schedule)
                 }
                 _ => {
                     let mut output = Output::create(out, options.force)?;
                     let case = toml::to_string(sim.case())
                         .map_err(|e| sph_core::SphError::output(out, e.to_string()))?;
                     output.write_text("case.toml", &case)?;
-                    Run::start(sim, output)?
+                    Run::start(sim, Some(output))?
                 }
             };
             self.run = Some(run);

@@ -73,7 +73,13 @@ impl<const D: usize> Sensor<D> {
 
     /// The face average of the pressure field `probe`.
     pub fn average(&self, probe: impl Fn(&Vector<D>) -> f64) -> f64 {
-        self.points.iter().map(probe).sum::<f64>() / self.points.len() as f64
+        Self::mean(self.points.iter().map(probe))
+    }
+
+    /// The face average of the pressures `at_points`, one per point of [`Self::points`].
+    pub fn mean(at_points: impl ExactSizeIterator<Item = f64>) -> f64 {
+        let n = at_points.len();
+        at_points.sum::<f64>() / n as f64
     }
 }
 

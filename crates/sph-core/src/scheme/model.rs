@@ -53,11 +53,13 @@ impl<const D: usize> Rates<D> {
         self.drift.get(i).copied().unwrap_or_else(Vector::zeros)
     }
 
-    /// Largest acceleration magnitude.
-    pub fn max_acceleration(&self) -> f64 {
-        self.du
-            .par_iter()
-            .map(|a| a.norm_squared())
+    /// Largest acceleration magnitude, over the particles `owned` flags when given
+    /// (a split run's own particles; its halo's rates are not all complete).
+    pub fn max_acceleration(&self, owned: Option<&[bool]>) -> f64 {
+        let own = |i: usize| owned.is_none_or(|o| o[i]);
+        (self.du.par_iter().enumerate())
+            .filter(|(i, _)| own(*i))
+            .map(|(_, a)| a.norm_squared())
             .reduce(|| 0.0, f64::max)
             .sqrt()
     }

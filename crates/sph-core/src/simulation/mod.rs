@@ -5,6 +5,7 @@
 
 mod checkpoint;
 mod series;
+mod split;
 
 pub use checkpoint::Checkpoint;
 
@@ -13,6 +14,7 @@ use crate::boundary::open::OpenBoundaries;
 use crate::case::{Case, IntegratorChoice, ShiftingChoice};
 use crate::diagnostics::sensors::Sensor;
 use crate::diagnostics::{self, Energies};
+use crate::distributed::{owns_fluid, Ranks};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::forcing::BodyForce;
@@ -104,6 +106,10 @@ pub struct Simulation<const D: usize> {
     open: Option<OpenBoundaries<D>>,
     /// The body force besides gravity, when the case has one.
     forcing: Option<BodyForce<D>>,
+    /// This process's share of a run split over several ([`Self::distribute`]).
+    ranks: Option<Ranks<D>>,
+    /// On process 0 of a split run: the whole run, gathered for output ([`Self::view`]).
+    view: Option<Box<Simulation<D>>>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -166,6 +172,8 @@ impl<const D: usize> Simulation<D> {
             sensors,
             open,
             forcing,
+            ranks: None,
+            view: None,
         };
         sim.rebuild(0.0);
         sim.state_changed();
@@ -271,13 +279,25 @@ impl<const D: usize> Simulation<D> {
         self.list.mean_neighbours()
     }
 
+    /// The largest fluid or wall speed (over all processes of a split run).
     fn max_speed(&self) -> f64 {
-        self.particles
-            .u
-            .par_iter()
+        let local = (self.particles.u.par_iter())
             .map(|u| u.norm_squared())
             .reduce(|| 0.0, f64::max)
-            .sqrt()
+            .sqrt();
+        self.global_max(local)
+    }
+
+    /// The largest of `value` over the processes of a split run (`value` otherwise).
+    fn global_max(&self, value: f64) -> f64 {
+        self.ranks.as_ref().map_or(value, |r| r.max(value))
+    }
+
+    /// Gives a split run's halo its owners' state (nothing otherwise).
+    fn refresh_halo(&mut self) {
+        if let Some(r) = &self.ranks {
+            r.refresh(&mut self.particles);
+        }
     }
 
     /// Largest displacement a step of `dt` may add: `Δt (1.2|u|max + |a|max Δt)`, plus
@@ -344,9 +364,16 @@ impl<const D: usize> Simulation<D> {
         let skin = (MIN_SKIN * support)
             .max(SKIN_OVER_REACH * reach)
             .min(self.max_skin);
+        if let Some(r) = self.ranks.as_mut() {
+            let shift = self.shift_velocity.as_mut();
+            r.redistribute(&mut self.particles, shift, &self.domain, support + skin);
+        }
         let (list, order) = NeighbourList::build(&mut self.particles, &self.domain, support, skin);
         if let Some(v) = self.shift_velocity.as_mut() {
             crate::particles::permute(v, &order);
+        }
+        if let Some(r) = self.ranks.as_mut() {
+            r.reorder(&order);
         }
         self.list = list;
         self.counters.rebuilds += 1;
@@ -356,7 +383,9 @@ impl<const D: usize> Simulation<D> {
     /// (construction, or velocities and densities edited by a front end): pressures, the
     /// acceleration that sizes the list skin and the energy-budget powers.
     pub fn state_changed(&mut self) {
-        self.last_acceleration = self.rates().max_acceleration();
+        let owned = self.ranks.as_ref().map(|r| r.owned().to_vec());
+        let local = self.rates().max_acceleration(owned.as_deref());
+        self.last_acceleration = self.global_max(local);
         if let (Some(b), Some(now)) = (self.budget.as_mut(), self.model.last_powers()) {
             (b.last, b.pending) = (now, 0.0);
         }
@@ -373,6 +402,7 @@ impl<const D: usize> Simulation<D> {
             open: self.open.as_ref(),
             time: self.time,
             forcing: self.forcing.as_ref(),
+            halo: self.ranks.as_ref(),
         };
         cx.evaluate(&mut self.particles, &mut rates, true, 0.0);
         rates
@@ -401,7 +431,8 @@ impl<const D: usize> Simulation<D> {
         let reach = self
             .reach(self.control.acoustic(), speed)
             .max(0.5 * MIN_SKIN * support);
-        let mut moved = self.list.max_displacement(&self.particles.x, &self.domain);
+        let mut moved =
+            self.global_max(self.list.max_displacement(&self.particles.x, &self.domain));
         let due = moved + reach > 0.5 * self.list.skin();
         let refill_due = (self.open.as_ref()).is_some_and(|o| o.refill_due(&self.particles));
         if due || refill_due {
@@ -418,7 +449,9 @@ impl<const D: usize> Simulation<D> {
             .cull(&self.particles.x, &self.domain, support + 2.0 * room);
         // the shift of the last step, and tensile control from the same free surface
         let surface = if self.shift_velocity.is_some() {
-            Some(self.shift(speed))
+            let surface = self.shift(speed);
+            self.refresh_halo();
+            Some(surface)
         } else {
             self.case
                 .scheme
@@ -437,11 +470,11 @@ impl<const D: usize> Simulation<D> {
             open: self.open.as_ref(),
             time: self.time,
             forcing: self.forcing.as_ref(),
+            halo: self.ranks.as_ref(),
         };
-        let a_max = self
-            .integrator
-            .begin(&mut self.particles, &mut cx)
-            .max_acceleration();
+        let owned = self.ranks.as_ref().map(|r| r.owned());
+        let local = (self.integrator.begin(&mut self.particles, &mut cx)).max_acceleration(owned);
+        let a_max = self.ranks.as_ref().map_or(local, |r| r.max(local));
         if let (Some(b), Some(now)) = (self.budget.as_mut(), cx.model.last_powers()) {
             b.advance(now);
         }
@@ -455,6 +488,7 @@ impl<const D: usize> Simulation<D> {
         self.integrator.advance(dt, &mut self.particles, &mut cx);
         let domain = self.domain;
         self.particles.x.par_iter_mut().for_each(|x| domain.wrap(x));
+        self.refresh_halo();
         self.last_acceleration = a_max;
         self.dt = dt;
         self.time += dt;
@@ -537,9 +571,15 @@ impl<const D: usize> Simulation<D> {
         why
     }
 
-    /// Fluid particles removed so far because they left the domain.
+    /// Fluid particles removed so far because they left the domain (by all processes
+    /// of a split run; collective there).
     pub fn removed(&self) -> u64 {
-        self.counters.removed
+        let Some(ranks) = &self.ranks else {
+            return self.counters.removed;
+        };
+        let mut removed = [self.counters.removed as f64];
+        ranks.sum(&mut removed);
+        removed[0] as u64
     }
 
     fn check_stability(&self) -> Result<()> {
@@ -547,15 +587,39 @@ impl<const D: usize> Simulation<D> {
         let guard = &self.case.stability;
         let max_speed = guard.max_mach * eos.c0;
         let limit = guard.max_density_variation;
-        match diagnostics::find_instability(&self.particles, eos.rho0, limit, max_speed) {
-            None => Ok(()),
-            Some((i, reason)) => Err(SphError::Unstable {
-                time: self.time,
-                step: self.counters.steps,
-                particle: self.particles.id[i],
-                position: format!("{:?}", self.particles.x[i].as_slice()),
-                reason,
-            }),
+        let found = diagnostics::find_instability(&self.particles, eos.rho0, limit, max_speed);
+        let Some(ranks) = &self.ranks else {
+            return found.map_or(Ok(()), |(i, reason)| Err(self.unstable(i, reason)));
+        };
+        // every process stops, with the same report (the first process's that found one)
+        let text = found.map(|(i, reason)| {
+            format!(
+                "{}\t{:?}\t{reason}",
+                self.particles.id[i],
+                self.particles.x[i].as_slice()
+            )
+        });
+        let Some(text) = ranks.first_text(text) else {
+            return Ok(());
+        };
+        let mut fields = text.splitn(3, '\t');
+        let mut next = || fields.next().unwrap_or_default().to_string();
+        Err(SphError::Unstable {
+            time: self.time,
+            step: self.counters.steps,
+            particle: next().parse().unwrap_or(u32::MAX),
+            position: next(),
+            reason: next(),
+        })
+    }
+
+    fn unstable(&self, i: usize, reason: String) -> SphError {
+        SphError::Unstable {
+            time: self.time,
+            step: self.counters.steps,
+            particle: self.particles.id[i],
+            position: format!("{:?}", self.particles.x[i].as_slice()),
+            reason,
         }
     }
 
@@ -570,27 +634,32 @@ impl<const D: usize> Simulation<D> {
     /// The fluid's load on each body at the current state, as in [`Self::bodies`]
     /// (see [`crate::boundary::bodies`]); refreshes the pressures.
     pub fn loads(&mut self) -> Vec<Load<D>> {
-        let body: Vec<Option<usize>> = self
-            .particles
-            .id
-            .par_iter()
-            .zip(self.particles.kind.par_iter())
-            .map(|(&id, &kind)| {
-                (kind == Kind::Wall)
+        let owned = self.ranks.as_ref().map(|r| r.owned());
+        let body: Vec<Option<usize>> = (0..self.particles.len())
+            .into_par_iter()
+            .map(|i| {
+                let (id, kind) = (self.particles.id[i], self.particles.kind[i]);
+                // a split run's walls count on the process that owns them
+                let own = owned.is_none_or(|o| o[i]);
+                (kind == Kind::Wall && own)
                     .then(|| body_of(&self.bodies, id))
                     .flatten()
             })
             .collect();
         let point = self.case.moment_point();
         let centre = Vector::<D>::from_fn(|d, _| point[d]);
-        self.model.wall_loads(
+        let loads = self.model.wall_loads(
             &mut self.particles,
             &self.list,
             &self.domain,
             &body,
             self.bodies.len(),
             &centre,
-        )
+        );
+        match &self.ranks {
+            Some(ranks) => summed_loads(ranks, loads),
+            None => loads,
+        }
     }
 
     pub fn sync_pressure(&mut self) {
@@ -598,13 +667,53 @@ impl<const D: usize> Simulation<D> {
             .update_pressure_field(&mut self.particles, &self.list, &self.domain);
     }
 
+    /// E_k, E_p and E_c of the fluid (of the whole run when it is split; collective).
     pub fn energies(&self) -> Energies {
         let ph = self.physics();
-        diagnostics::energies(&self.particles, &ph.eos, &ph.gravity)
+        let Some(ranks) = &self.ranks else {
+            return diagnostics::energies(&self.particles, &ph.eos, &ph.gravity);
+        };
+        let p = &self.particles;
+        let own: Vec<bool> = (0..p.len())
+            .map(|i| owns_fluid(Some(ranks), p, i))
+            .collect();
+        let e = diagnostics::energies_of(p, &own, &ph.eos, &ph.gravity);
+        let mut sums = [e.kinetic, e.potential, e.internal];
+        ranks.sum(&mut sums);
+        let [kinetic, potential, internal] = sums;
+        Energies {
+            kinetic,
+            potential,
+            internal,
+        }
     }
 
+    /// Largest `|ρ/ρ0 - 1|` over the fluid (of the whole run; collective when split).
     pub fn max_density_variation(&self) -> f64 {
-        diagnostics::max_density_variation(&self.particles, self.physics().eos.rho0)
+        let rho0 = self.physics().eos.rho0;
+        self.global_max(diagnostics::max_density_variation(&self.particles, rho0))
+    }
+
+    /// Shepard-interpolated pressures at `points` (see [`Self::probe_pressure`]): in a
+    /// split run each point's from the process whose region holds it, which holds all
+    /// the fluid in reach of it (collective).
+    pub fn probe_pressures(&self, points: &[Vector<D>]) -> Vec<Option<f64>> {
+        let Some(ranks) = &self.ranks else {
+            return points.iter().map(|x| self.probe_pressure(x)).collect();
+        };
+        let mine = |x: &Vector<D>| ranks.decomposition().owner(x) == ranks.rank();
+        let mut sums: Vec<f64> = (points.iter())
+            .flat_map(
+                |x| match mine(x).then(|| self.probe_pressure(x)).flatten() {
+                    Some(p) => [p, 1.0],
+                    None => [0.0, 0.0],
+                },
+            )
+            .collect();
+        ranks.sum(&mut sums);
+        sums.chunks(2)
+            .map(|c| (c[1] > 0.0).then_some(c[0]))
+            .collect()
     }
 
     /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first);
@@ -630,13 +739,36 @@ impl<const D: usize> Simulation<D> {
         diagnostics::wall_crossings(&self.case, &self.particles)
     }
 
+    /// Largest fluid coordinate along `axis` (of the whole run; collective when split).
     pub fn surge_front(&self, axis: usize) -> f64 {
-        diagnostics::surge_front(&self.particles, axis)
+        self.global_max(diagnostics::surge_front(&self.particles, axis))
     }
 
     pub fn n_fluid(&self) -> usize {
         self.particles.n_fluid()
     }
+}
+
+/// `loads` of this process's walls summed over the processes, body by body.
+fn summed_loads<const D: usize>(ranks: &Ranks<D>, loads: Vec<Load<D>>) -> Vec<Load<D>> {
+    let mut flat: Vec<f64> = (loads.iter())
+        .flat_map(|l| {
+            l.pressure
+                .iter()
+                .chain(l.viscous.iter())
+                .chain(l.moment.iter())
+                .copied()
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    ranks.sum(&mut flat);
+    flat.chunks(2 * D + 3)
+        .map(|c| Load {
+            pressure: Vector::from_fn(|d, _| c[d]),
+            viscous: Vector::from_fn(|d, _| c[D + d]),
+            moment: nalgebra::Vector3::new(c[2 * D], c[2 * D + 1], c[2 * D + 2]),
+        })
+        .collect()
 }
 
 /// Inflow speeds within the weakly compressible limit, |U| ≤ c0/10 (Mach 0.1, density

@@ -1,6 +1,7 @@
 //! The time-series row of a run: the columns its case asks for, and their values.
 
 use super::Simulation;
+use crate::diagnostics::sensors::Sensor;
 use crate::particles::Vector;
 
 /// The time-series columns a case asks for, and their values now.
@@ -48,7 +49,8 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// One row matching [`Self::series_header`]; refreshes pressures when probes need
-    /// them, and advances the sensors' filters by one reading.
+    /// them, and advances the sensors' filters by one reading. In a split run every
+    /// process gets the whole run's row (collective).
     pub fn series_values(&mut self) -> Vec<f64> {
         let diag = self.case.diagnostics.clone();
         let mut v = vec![self.time, self.counters.steps as f64, self.dt];
@@ -66,22 +68,31 @@ impl<const D: usize> Simulation<D> {
             ]);
         }
         v.push(self.max_density_variation());
-        v.push(self.counters.removed as f64);
+        v.push(self.removed() as f64);
         if !self.case.open_boundary.is_empty() {
             v.push(self.counters.created as f64);
         }
         if !diag.probes.is_empty() || !self.sensors.is_empty() {
             self.sync_pressure();
-            for probe in &diag.probes {
-                let point = Vector::<D>::from_fn(|d, _| probe[d]);
-                v.push(self.probe_pressure(&point).unwrap_or(f64::NAN));
-            }
+            let points: Vec<Vector<D>> = (diag.probes.iter())
+                .map(|probe| Vector::<D>::from_fn(|d, _| probe[d]))
+                .collect();
+            let values = self.probe_pressures(&points);
+            v.extend(values.iter().map(|p| p.unwrap_or(f64::NAN)));
         }
         let mut sensors = std::mem::take(&mut self.sensors);
         for s in &mut sensors {
+            let mut points = s.points.clone();
+            points.push(s.centre);
             // a sensor's face in air reads zero gauge pressure, as a transducer does
-            let face = s.average(|x| self.probe_pressure(x).unwrap_or(0.0));
-            v.extend([face, self.probe_pressure(&s.centre).unwrap_or(0.0)]);
+            let values: Vec<f64> = (self.probe_pressures(&points).iter())
+                .map(|p| p.unwrap_or(0.0))
+                .collect();
+            let (face, centre) = (
+                Sensor::<D>::mean(values[..s.points.len()].iter().copied()),
+                values[s.points.len()],
+            );
+            v.extend([face, centre]);
             if let Some(filter) = &mut s.filter {
                 v.push(filter.push(face));
             }

@@ -18,6 +18,7 @@
 //! `dx/dt = u + δu` in every stage; the symplectic scheme takes δu at the midpoint.
 
 use crate::boundary::open::OpenBoundaries;
+use crate::distributed::Ranks;
 use crate::domain::Domain;
 use crate::forcing::BodyForce;
 use crate::neighbours::NeighbourList;
@@ -36,12 +37,17 @@ pub struct Context<'a, const D: usize> {
     pub time: f64,
     /// The case's body force field besides gravity, when it has one.
     pub forcing: Option<&'a BodyForce<D>>,
+    /// This process's share of a split run, whose halo is refreshed before each
+    /// evaluation within a step (the state at a step's start is already refreshed).
+    pub halo: Option<&'a Ranks<D>>,
 }
 
 impl<const D: usize> Context<'_, D> {
     /// The rates at the particles' state (see [`Model::evaluate`]), with the buffer
     /// particles of open boundaries set before and held after, and the body force at
-    /// the state's time, `elapsed` after the step's start.
+    /// the state's time, `elapsed` after the step's start. In a split run the halo
+    /// gets its owners' state first, unless the state is the step's start (`elapsed`
+    /// zero), which the step before left refreshed.
     pub fn evaluate(
         &mut self,
         p: &mut Particles<D>,
@@ -49,6 +55,9 @@ impl<const D: usize> Context<'_, D> {
         with_diffusion: bool,
         elapsed: f64,
     ) {
+        if let Some(halo) = self.halo.filter(|_| elapsed > 0.0) {
+            halo.refresh(p);
+        }
         if let Some(open) = self.open {
             open.prepare(p, self.list, self.domain, &*self.model, self.time);
         }

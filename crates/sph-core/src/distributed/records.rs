@@ -1,0 +1,165 @@
+//! Particles as bytes, for the messages between processes: whole particles (when they
+//! move to another process, or join one's halo) and their state `(x, u, ρ)` (the halo
+//! refreshed before an evaluation). Native byte order: the processes of a run share a
+//! machine type.
+
+use crate::particles::{Kind, Particles, Vector};
+
+/// Appends values to a message.
+#[derive(Default)]
+pub(super) struct Writer(pub(super) Vec<u8>);
+
+impl Writer {
+    fn f64(&mut self, v: f64) {
+        self.0.extend_from_slice(&v.to_ne_bytes());
+    }
+
+    fn vector<const D: usize>(&mut self, v: &Vector<D>) {
+        v.iter().for_each(|&c| self.f64(c));
+    }
+
+    /// Particle `i` of `p` whole, with its shifting velocity when the run keeps one.
+    pub(super) fn particle<const D: usize>(
+        &mut self,
+        p: &Particles<D>,
+        i: usize,
+        shift: Option<&[Vector<D>]>,
+    ) {
+        self.state(p, i);
+        self.f64(p.p[i]);
+        self.f64(p.mass[i]);
+        self.vector(&p.u_wall_visc[i]);
+        self.0.extend_from_slice(&p.id[i].to_ne_bytes());
+        self.0.push(p.kind[i] as u8);
+        if let Some(v) = shift {
+            self.vector(&v[i]);
+        }
+    }
+
+    /// The position and kind of particle `i` (for a new bisection).
+    pub(super) fn position<const D: usize>(&mut self, p: &Particles<D>, i: usize) {
+        self.vector(&p.x[i]);
+        self.0.push(p.kind[i] as u8);
+    }
+
+    /// The state `(x, u, ρ)` of particle `i`.
+    pub(super) fn state<const D: usize>(&mut self, p: &Particles<D>, i: usize) {
+        self.vector(&p.x[i]);
+        self.vector(&p.u[i]);
+        self.f64(p.rho[i]);
+    }
+}
+
+/// Reads values off a message, in the order they were written.
+pub(super) struct Reader<'a> {
+    bytes: &'a [u8],
+}
+
+impl<'a> Reader<'a> {
+    pub(super) fn new(bytes: &'a [u8]) -> Self {
+        Self { bytes }
+    }
+
+    pub(super) fn is_empty(&self) -> bool {
+        self.bytes.is_empty()
+    }
+
+    fn take<const N: usize>(&mut self) -> [u8; N] {
+        let (head, rest) = self.bytes.split_at(N);
+        self.bytes = rest;
+        head.try_into().expect("split at N")
+    }
+
+    fn f64(&mut self) -> f64 {
+        f64::from_ne_bytes(self.take())
+    }
+
+    fn vector<const D: usize>(&mut self) -> Vector<D> {
+        Vector::from_fn(|_, _| self.f64())
+    }
+
+    /// Appends the next whole particle to `p` (and its shifting velocity to `shift`).
+    pub(super) fn particle<const D: usize>(
+        &mut self,
+        p: &mut Particles<D>,
+        shift: Option<&mut Vec<Vector<D>>>,
+    ) {
+        p.x.push(self.vector());
+        p.u.push(self.vector());
+        p.rho.push(self.f64());
+        p.p.push(self.f64());
+        p.mass.push(self.f64());
+        p.u_wall_visc.push(self.vector());
+        p.id.push(u32::from_ne_bytes(self.take()));
+        let kind = self.kind();
+        p.kind.push(kind);
+        if let Some(v) = shift {
+            v.push(self.vector());
+        }
+    }
+
+    /// Appends the next position and kind.
+    pub(super) fn position<const D: usize>(
+        &mut self,
+        x: &mut Vec<Vector<D>>,
+        kind: &mut Vec<Kind>,
+    ) {
+        x.push(self.vector());
+        kind.push(self.kind());
+    }
+
+    fn kind(&mut self) -> Kind {
+        let [kind] = self.take();
+        if kind == Kind::Wall as u8 {
+            Kind::Wall
+        } else {
+            Kind::Fluid
+        }
+    }
+
+    /// Sets the state `(x, u, ρ)` of particle `i` of `p` from the next record.
+    pub(super) fn state<const D: usize>(&mut self, p: &mut Particles<D>, i: usize) {
+        p.x[i] = self.vector();
+        p.u[i] = self.vector();
+        p.rho[i] = self.f64();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_particle_reads_back_as_written() {
+        let mut p = Particles::<3>::default();
+        let v = |a: f64| Vector::<3>::new(a, -2.0 * a, 0.1 + a);
+        p.push(Kind::Fluid, v(1.0), v(2.0), 1000.5, 0.25);
+        p.push(Kind::Wall, v(3.0), v(4.0), 999.0, 0.5);
+        (p.p[1], p.u_wall_visc[1], p.id[1]) = (12.5, v(7.0), 4_000_000_000);
+        let shift = vec![v(5.0), v(6.0)];
+        let mut w = Writer::default();
+        w.particle(&p, 1, Some(&shift));
+        w.particle(&p, 0, Some(&shift));
+        let (mut q, mut s) = (Particles::<3>::default(), Vec::new());
+        let mut r = Reader::new(&w.0);
+        while !r.is_empty() {
+            r.particle(&mut q, Some(&mut s));
+        }
+        assert_eq!(
+            (q.x.clone(), q.u.clone(), q.rho.clone()),
+            (
+                vec![p.x[1], p.x[0]],
+                vec![p.u[1], p.u[0]],
+                vec![999.0, 1000.5]
+            )
+        );
+        assert_eq!(
+            (q.p[0], q.mass.clone(), q.kind.clone()),
+            (12.5, vec![0.5, 0.25], vec![Kind::Wall, Kind::Fluid])
+        );
+        assert_eq!(
+            (q.id.clone(), q.u_wall_visc[0], s),
+            (vec![4_000_000_000, 0], v(7.0), vec![v(6.0), v(5.0)])
+        );
+    }
+}

@@ -177,11 +177,16 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
                     (Some(case), None) => run(&case, options, &procs),
                     (None, None) => unreachable!("clap requires a case or --restart"),
                 };
-                // process 0 reports; the others end with the same status, quietly
-                result.map_err(|e| match procs.is_first() {
-                    true => e,
-                    false => without_message(e),
-                })
+                // process 0 reports, and no process ends before it has: a launcher
+                // stops the others as soon as one ends with an error
+                let result = result.map_err(|e| {
+                    if procs.is_first() {
+                        eprintln!("error: {e}");
+                    }
+                    without_message(e)
+                });
+                procs.wait_for_all();
+                result
             })
         }
         Command::Check { case, ranks } => check(&case, ranks),
@@ -204,7 +209,7 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
     }
 }
 
-/// `e` without its message (for the processes other than 0 of a split run).
+/// `e` without its message, once reported.
 fn without_message(e: anyhow::Error) -> anyhow::Error {
     let code = e.downcast_ref::<Failure>().map_or(2, |f| f.code);
     Failure {
@@ -501,11 +506,12 @@ fn scheme_line<const D: usize>(sim: &Simulation<D>) -> String {
     parts.join(", ")
 }
 
-/// Per process of a split run: its fluid particles and halo, the halo refreshes and
+/// Per process of a split run: its fluid particles and halo, the particles it handed
+/// to other processes at list rebuilds, the halo refreshes and
 /// their bytes, and its time in communication against the run's `wall` time; then the
 /// load imbalance (`None` when the run is not split). Collective.
 fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<String> {
-    const FIELDS: usize = 6;
+    const FIELDS: usize = 7;
     let ranks = sim.ranks()?;
     let (rank, size) = (ranks.rank(), ranks.size());
     let t = ranks.traffic();
@@ -521,6 +527,7 @@ fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<Stri
         t.refresh_bytes as f64,
         t.seconds,
         t.rebalances as f64,
+        t.migrated as f64,
     ]);
     ranks.sum(&mut table);
     let rows: Vec<&[f64]> = table.chunks(FIELDS).collect();
@@ -534,10 +541,11 @@ fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<Stri
     );
     for (r, row) in rows.iter().enumerate() {
         text.push_str(&format!(
-            "  process {r:<4} {:.0} fluid, halo {:.0}; {:.0} halo refreshes of {:.1} kB sent; \
-             communication {:.2} s of {wall:.2} s ({:.1}%)\n",
+            "  process {r:<4} {:.0} fluid, halo {:.0}, {:.0} sent to other processes; {:.0} halo \
+             refreshes of {:.1} kB sent; communication {:.2} s of {wall:.2} s ({:.1}%)\n",
             row[0],
             row[1],
+            row[6],
             row[2],
             row[3] / row[2].max(1.0) / 1e3,
             row[4],

@@ -29,6 +29,13 @@ impl Processes {
     pub fn is_first(&self) -> bool {
         self.comm.as_ref().is_none_or(|c| c.rank() == 0)
     }
+
+    /// Returns once every process has called it.
+    pub fn wait_for_all(&self) {
+        if let Some(comm) = &self.comm {
+            comm.max(&mut [0.0]);
+        }
+    }
 }
 
 #[cfg(not(feature = "mpi"))]

@@ -455,3 +455,24 @@ fn the_shipped_case_schema_is_current() {
          `cargo run --release -p sph-cli -- schema > docs/case.schema.json`"
     );
 }
+
+/// Started by mpirun, a build without MPI would run the whole case once per process
+/// into one folder; it refuses instead.
+#[cfg(not(feature = "mpi"))]
+#[test]
+fn a_build_without_mpi_refuses_to_run_under_a_launcher() {
+    let dir = scratch("no-mpi");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sph-cli"))
+        .args(["run", &example("dam_break_2d.toml"), "--out"])
+        .arg(&dir)
+        .env("OMPI_COMM_WORLD_SIZE", "2")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.starts_with("error: started by an MPI launcher"),
+        "{stderr}"
+    );
+    assert!(!dir.exists(), "no folder is made");
+}

@@ -511,7 +511,7 @@ fn scheme_line<const D: usize>(sim: &Simulation<D>) -> String {
 /// their bytes, and its time in communication against the run's `wall` time; then the
 /// load imbalance (`None` when the run is not split). Collective.
 fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<String> {
-    const FIELDS: usize = 7;
+    const FIELDS: usize = 8;
     let ranks = sim.ranks()?;
     let (rank, size) = (ranks.rank(), ranks.size());
     let t = ranks.traffic();
@@ -528,6 +528,7 @@ fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<Stri
         t.seconds,
         t.rebalances as f64,
         t.migrated as f64,
+        t.refresh_seconds,
     ]);
     ranks.sum(&mut table);
     let rows: Vec<&[f64]> = table.chunks(FIELDS).collect();
@@ -542,12 +543,14 @@ fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<Stri
     for (r, row) in rows.iter().enumerate() {
         text.push_str(&format!(
             "  process {r:<4} {:.0} fluid, halo {:.0}, {:.0} sent to other processes; {:.0} halo \
-             refreshes of {:.1} kB sent; communication {:.2} s of {wall:.2} s ({:.1}%)\n",
+             refreshes of {:.1} kB sent ({:.2} ms each); communication {:.2} s of {wall:.2} s \
+             ({:.1}%)\n",
             row[0],
             row[1],
             row[6],
             row[2],
             row[3] / row[2].max(1.0) / 1e3,
+            1e3 * row[7] / row[2].max(1.0),
             row[4],
             100.0 * row[4] / wall.max(1e-12),
         ));

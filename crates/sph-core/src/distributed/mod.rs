@@ -42,15 +42,19 @@ pub const REBALANCE: f64 = 1.1;
 /// What a process sent and how long it waited, for the run's report.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Traffic {
-    /// Halo refreshes, and the bytes this process sent in them.
+    /// Halo refreshes, the bytes this process sent in them, and their wall time
+    /// (packing, exchange and unpacking; the exchange's share of it includes waiting
+    /// for the slowest process).
     pub refreshes: u64,
     pub refresh_bytes: u64,
+    pub refresh_seconds: f64,
     /// Particles this process sent at list rebuilds, to their new owners and as halo.
     pub migrated: u64,
     pub halo_sent: u64,
     /// Times the domain was bisected again.
     pub rebalances: u64,
-    /// Wall time in communication (every exchange and reduction), seconds.
+    /// Wall time in communication (every exchange and reduction, with the waiting for
+    /// the slowest process in them), seconds.
     pub seconds: f64,
 }
 
@@ -286,6 +290,7 @@ impl<const D: usize> Ranks<D> {
 
     /// Gives the halo particles their owners' state `(x, u, ρ)`.
     pub fn refresh(&self, p: &mut Particles<D>) {
+        let start = Instant::now();
         let out: Vec<Vec<u8>> = (self.send.par_iter())
             .map(|list| {
                 let mut w = Writer::default();
@@ -301,6 +306,7 @@ impl<const D: usize> Ranks<D> {
         let mut t = self.traffic.lock().expect("traffic lock");
         t.refreshes += 1;
         t.refresh_bytes += bytes;
+        t.refresh_seconds += start.elapsed().as_secs_f64();
     }
 
     /// Every process's own particles (with their shifting velocities), gathered on

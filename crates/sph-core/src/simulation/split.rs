@@ -49,7 +49,7 @@ impl<const D: usize> Simulation<D> {
     /// pair loop; with shifting or tensile control, the free surface's three (the
     /// moments, the scan region, the neighbours on the surface). One pass fewer leaves
     /// a split dam break 1e-6 away from the serial run after 200 steps; with these it
-    /// agrees to round-off (`crates/sph-cli/tests/mpi.rs`).
+    /// agrees to round-off (`crates/sph-cli/tests/mpi/main.rs`).
     fn halo_passes(&self) -> usize {
         let s = &self.case.scheme;
         let surface = s.shifting != crate::case::ShiftingChoice::None || s.tensile_control;

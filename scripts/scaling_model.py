@@ -64,16 +64,17 @@ def communication(nodes, h, between_passes):
 def step(nodes, per_node=None, between_passes=False):
     """(compute, communication, halo fraction, memory per node [GB]) of one step.
 
-    As built, the halo is `PASSES` deep and evaluated with the own particles (its rows
-    add their share to every pair pass); with an exchange between the passes it is one
-    pass deep, not evaluated, and the δ-SPH gradient is exchanged as well."""
+    As built, the halo is `PASSES` deep and its inner `PASSES - 1` layers are evaluated
+    with the own particles (their fluid rows add their share to every pair pass); with
+    an exchange between the passes it is one pass deep, not evaluated, and the δ-SPH
+    gradient is exchanged as well."""
     owned = per_node if per_node else N / nodes
     compute = owned / (RATE_PER_CORE * CORES * THREAD_EFFICIENCY)
     if nodes == 1:
         return compute, 0.0, 0.0, owned * BYTES / 1e9
     h = halo(owned, depth(1 if between_passes else PASSES))
     if not between_passes:
-        compute *= 1.0 + h / owned
+        compute *= 1.0 + halo(owned, depth(PASSES - 1)) / owned
     return (compute, communication(nodes, h, between_passes), h / owned,
             (owned + h) * BYTES / 1e9)
 

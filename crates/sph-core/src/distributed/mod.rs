@@ -65,6 +65,9 @@ pub struct Ranks<const D: usize> {
     split: Decomposition<D>,
     /// Pair passes the halo covers (see the module).
     passes: usize,
+    /// How far from this process's region the particles get neighbour rows at the
+    /// current lists: `(passes - 1) × (R + s)`.
+    listed_width: f64,
     /// Per particle held, in storage order: whether this process owns it.
     owned: Vec<bool>,
     /// Per process: the own particles whose state it holds as halo, in message order.
@@ -97,6 +100,7 @@ impl<const D: usize> Ranks<D> {
             comm,
             split,
             passes,
+            listed_width: 0.0,
             owned: vec![true; p.len()],
             send: vec![Vec::new(); size],
             recv: vec![Vec::new(); size],
@@ -185,6 +189,16 @@ impl<const D: usize> Ranks<D> {
         self.rebalance(p, domain);
         self.migrate(p, shift.as_deref_mut());
         self.gather_halo(p, shift, domain, self.passes as f64 * radius);
+        self.listed_width = (self.passes - 1) as f64 * radius;
+    }
+
+    /// Whether a particle of kind `kind` at `x` needs neighbour rows: every wall (their
+    /// rows, fluid only, feed the cheap pressure extrapolation), and the fluid within
+    /// `(passes - 1) × (R + s)` of this process's region, the own particles and the
+    /// inner part of the halo, whose results the own particles read. The fluid rows of
+    /// the outer halo, the costly ones, would only be discarded.
+    pub fn listed(&self, x: &Vector<D>, kind: Kind, domain: &Domain<D>) -> bool {
+        kind == Kind::Wall || self.split.region_distance(self.rank(), x, domain) < self.listed_width
     }
 
     /// Bisects the domain again, from every process's particles, when the largest

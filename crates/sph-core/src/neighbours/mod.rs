@@ -90,10 +90,24 @@ impl<const D: usize> NeighbourList<D> {
         support: f64,
         skin: f64,
     ) -> (Self, Vec<usize>) {
+        Self::build_rows(particles, domain, support, skin, |_, _| true)
+    }
+
+    /// [`Self::build`], with rows only for the particles whose position and kind
+    /// `listed` accepts (the others' rows are empty: the part of a split run's halo
+    /// whose results its own particles do not read).
+    pub fn build_rows(
+        particles: &mut Particles<D>,
+        domain: &Domain<D>,
+        support: f64,
+        skin: f64,
+        listed: impl Fn(&Vector<D>, Kind) -> bool + Sync,
+    ) -> (Self, Vec<usize>) {
         let radius = support + skin;
         let (grid, order) = Grid::sorted(&particles.x, domain, radius);
         particles.permute(&order);
-        let list = Self::gather(&particles.x, &particles.kind, domain, grid, radius, skin);
+        let (x, kind) = (&particles.x, &particles.kind);
+        let list = Self::gather(x, kind, domain, grid, radius, skin, listed);
         (list, order)
     }
 
@@ -113,10 +127,19 @@ impl<const D: usize> NeighbourList<D> {
         if order.iter().enumerate().any(|(k, &o)| k != o) {
             return None;
         }
-        Some(Self::gather(&reference, kind, domain, grid, radius, skin))
+        Some(Self::gather(
+            &reference,
+            kind,
+            domain,
+            grid,
+            radius,
+            skin,
+            |_, _| true,
+        ))
     }
 
-    /// The Verlet rows of particles at `x` (sorted by cell in `grid`), all active.
+    /// The Verlet rows of the particles at `x` (sorted by cell in `grid`) that `listed`
+    /// accepts, empty rows for the others; all active.
     fn gather(
         x: &[Vector<D>],
         kind: &[Kind],
@@ -124,6 +147,7 @@ impl<const D: usize> NeighbourList<D> {
         grid: Grid<D>,
         radius: f64,
         skin: f64,
+        listed: impl Fn(&Vector<D>, Kind) -> bool + Sync,
     ) -> Self {
         let n = x.len();
         let r2 = radius * radius;
@@ -138,6 +162,10 @@ impl<const D: usize> NeighbourList<D> {
                 let mut walls = Vec::with_capacity(32);
                 for i in rows {
                     let (xi, wall_i) = (&x[i], kind[i] == Kind::Wall);
+                    if !listed(xi, kind[i]) {
+                        out.counts.push((0, 0));
+                        continue;
+                    }
                     let before = out.indices.len();
                     walls.clear();
                     grid.for_adjacent(&grid.coords(xi), |cell| {
@@ -484,5 +512,28 @@ mod tests {
         assert_eq!(list.max_displacement(&p.x, &domain), 0.0);
         p.x[5][0] += 0.011;
         assert!((list.max_displacement(&p.x, &domain) - 0.011).abs() < 1e-12);
+    }
+
+    /// Rows built for some particles only (a split run's own particles and inner halo)
+    /// are the full build's rows there, and empty elsewhere.
+    #[test]
+    fn rows_built_for_some_particles_are_the_full_rows() {
+        let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), [true, false]);
+        let listed = |x: &Vector<2>, kind: Kind| kind == Kind::Wall || x[0] < 0.4;
+        let (mut all, mut some) = (random_set::<2>(3000, 7), random_set::<2>(3000, 7));
+        let (full, _) = NeighbourList::build(&mut all, &domain, 0.06, 0.01);
+        let (part, _) = NeighbourList::build_rows(&mut some, &domain, 0.06, 0.01, listed);
+        assert_eq!(all.x, some.x, "the same reordering");
+        let mut empty = 0;
+        for i in 0..all.len() {
+            if listed(&all.x[i], all.kind[i]) {
+                assert_eq!(part.fluid(i), full.fluid(i), "particle {i}");
+                assert_eq!(part.walls(i), full.walls(i), "particle {i}");
+            } else {
+                assert_eq!(part.of(i).count(), 0, "particle {i}");
+                empty += usize::from(full.of(i).count() > 0);
+            }
+        }
+        assert!(empty > 1000, "the test must drop many rows ({empty})");
     }
 }

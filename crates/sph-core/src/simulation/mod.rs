@@ -368,7 +368,13 @@ impl<const D: usize> Simulation<D> {
             let shift = self.shift_velocity.as_mut();
             r.redistribute(&mut self.particles, shift, &self.domain, support + skin);
         }
-        let (list, order) = NeighbourList::build(&mut self.particles, &self.domain, support, skin);
+        let (p, domain) = (&mut self.particles, &self.domain);
+        let (list, order) = match self.ranks.as_ref() {
+            Some(r) => {
+                NeighbourList::build_rows(p, domain, support, skin, |x, k| r.listed(x, k, domain))
+            }
+            None => NeighbourList::build(p, domain, support, skin),
+        };
         if let Some(v) = self.shift_velocity.as_mut() {
             crate::particles::permute(v, &order);
         }

@@ -10,8 +10,10 @@ Measured here (2-core machine; docs/scaling.md gives the commands):
                  spacings deep at R = 2.66Δx with two passes, 2 (R + s) = 7.0Δx
   REFRESHES      halo refreshes per RK4 step (244 in 61 steps, 3D dam break)
   REBUILD_EVERY  steps per list rebuild, when the halo is gathered whole (61 / 10)
-  PACK_S         seconds per halo particle of a refresh on one thread, packing,
-                 exchange through shared memory and unpacking (0.88 ms for 13 594)
+  PACK_S, SCAN_S seconds of a refresh on one thread per halo particle (packing and
+                 unpacking its record) and per particle held (the unpacking pass):
+                 0.25 ms for 2 233 of 107 000 (2D), 0.56-0.68 ms for 13 594 of
+                 131 000 (3D); both parallel over the threads
   halo formula   H = 6 n² w + 3π n w² + (4/3)π w³ for a box of n³ particles and a halo
                  w spacings deep, within 0.7% of `sph-cli check --ranks` on a periodic
                  cube of 10^6 particles
@@ -32,7 +34,8 @@ STATE_BYTES = 7 * 8          # x, u, ρ in 3D
 GRADIENT_BYTES = 3 * 8       # the renormalised density gradient, in 3D
 REBUILD_EVERY = 6            # steps per list rebuild (measured)
 RECORD_BYTES = 13 * 8 + 5    # a whole particle: x, u, ρ, p, m, wall velocity, id, kind
-PACK_S = 0.88e-3 / 13594     # s per halo particle and refresh on one thread (measured)
+PACK_S = 23e-9               # s per halo particle and refresh on one thread (measured)
+SCAN_S = 2.35e-9             # s per particle held and refresh on one thread (measured)
 BANDWIDTH = 12e9             # bytes/s per node, assumed (InfiniBand HDR100)
 LATENCY = 2e-6               # s per message, assumed
 COLLECTIVES = 2              # per exchange: the counts (all-to-all), then the data
@@ -49,12 +52,12 @@ def halo(particles_per_rank, w):
     return 6 * n * n * w + 3 * math.pi * n * w * w + 4.0 / 3.0 * math.pi * w ** 3
 
 
-def communication(nodes, h, between_passes):
+def communication(nodes, owned, h, between_passes):
     """Seconds per step of halo traffic, message latency and reductions."""
     refresh_bytes = REFRESHES * h * (STATE_BYTES + (GRADIENT_BYTES if between_passes else 0))
     rebuild_bytes = h * RECORD_BYTES / REBUILD_EVERY
     exchanges = REFRESHES * (2 if between_passes else 1)
-    pack = exchanges * h * PACK_S / (CORES * THREAD_EFFICIENCY)
+    pack = exchanges * (h * PACK_S + (owned + h) * SCAN_S) / (CORES * THREAD_EFFICIENCY)
     messages = (exchanges + 1.0 / REBUILD_EVERY) * COLLECTIVES
     latency = messages * (nodes - 1) * LATENCY
     latency += REDUCTIONS * math.log2(nodes) * LATENCY
@@ -75,7 +78,7 @@ def step(nodes, per_node=None, between_passes=False):
     h = halo(owned, depth(1 if between_passes else PASSES))
     if not between_passes:
         compute *= 1.0 + halo(owned, depth(PASSES - 1)) / owned
-    return (compute, communication(nodes, h, between_passes), h / owned,
+    return (compute, communication(nodes, owned, h, between_passes), h / owned,
             (owned + h) * BYTES / 1e9)
 
 

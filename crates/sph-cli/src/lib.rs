@@ -543,7 +543,7 @@ fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<Stri
     for (r, row) in rows.iter().enumerate() {
         text.push_str(&format!(
             "  process {r:<4} {:.0} fluid, halo {:.0}, {:.0} sent to other processes; {:.0} halo \
-             refreshes of {:.1} kB sent ({:.2} ms each); communication {:.2} s of {wall:.2} s \
+             refreshes of {:.1} kB sent ({:.3} ms each to pack and unpack); communication {:.2} s of {wall:.2} s \
              ({:.1}%)\n",
             row[0],
             row[1],

@@ -31,7 +31,7 @@ use crate::decomposition::Decomposition;
 use crate::domain::Domain;
 use crate::particles::{permute, retain, Kind, Particles, Vector};
 use rayon::prelude::*;
-use records::{Reader, Writer};
+use records::{get_state, put_state, state_len, Reader, Writer};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -42,9 +42,8 @@ pub const REBALANCE: f64 = 1.1;
 /// What a process sent and how long it waited, for the run's report.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Traffic {
-    /// Halo refreshes, the bytes this process sent in them, and their wall time
-    /// (packing, exchange and unpacking; the exchange's share of it includes waiting
-    /// for the slowest process).
+    /// Halo refreshes, the bytes this process sent in them, and the wall time spent
+    /// packing and unpacking their records (the exchange itself is in `seconds`).
     pub refreshes: u64,
     pub refresh_bytes: u64,
     pub refresh_seconds: f64,
@@ -72,8 +71,9 @@ pub struct Ranks<const D: usize> {
     owned: Vec<bool>,
     /// Per process: the own particles whose state it holds as halo, in message order.
     send: Vec<Vec<usize>>,
-    /// Per process: where its particles sit in this one's halo, in message order.
-    recv: Vec<Vec<usize>>,
+    /// Per particle held, in storage order: for a halo particle, the process that
+    /// owns it and the place of its record in that process's refresh message.
+    source: Vec<Option<(u32, u32)>>,
     traffic: Mutex<Traffic>,
 }
 
@@ -103,7 +103,7 @@ impl<const D: usize> Ranks<D> {
             listed_width: 0.0,
             owned: vec![true; p.len()],
             send: vec![Vec::new(); size],
-            recv: vec![Vec::new(); size],
+            source: vec![None; p.len()],
             traffic: Mutex::new(Traffic::default()),
         }
     }
@@ -123,7 +123,7 @@ impl<const D: usize> Ranks<D> {
 
     /// The halo particles held.
     pub fn halo_len(&self) -> usize {
-        self.recv.iter().map(Vec::len).sum()
+        self.source.iter().filter(|s| s.is_some()).count()
     }
 
     pub fn decomposition(&self) -> &Decomposition<D> {
@@ -278,13 +278,15 @@ impl<const D: usize> Ranks<D> {
             })
             .collect();
         let sent = self.send.iter().map(Vec::len).sum::<usize>() as u64;
+        self.source = vec![None; n_own];
         for (q, bytes) in self.exchange(out).into_iter().enumerate() {
-            let first = p.len();
             let mut r = Reader::new(&bytes);
+            let mut k = 0;
             while !r.is_empty() {
                 r.particle(p, shift.as_deref_mut());
+                self.source.push(Some((q as u32, k)));
+                k += 1;
             }
-            self.recv[q] = (first..p.len()).collect();
         }
         self.owned = (0..p.len()).map(|i| i < n_own).collect();
         self.traffic.lock().expect("traffic lock").halo_sent += sent;
@@ -293,34 +295,46 @@ impl<const D: usize> Ranks<D> {
     /// Follows a reordering of the particles held (new index k holds old `order[k]`).
     pub fn reorder(&mut self, order: &[usize]) {
         permute(&mut self.owned, order);
+        permute(&mut self.source, order);
         let mut new_index = vec![0; order.len()];
         for (k, &old) in order.iter().enumerate() {
             new_index[old] = k;
         }
-        for list in self.send.iter_mut().chain(self.recv.iter_mut()) {
+        for list in self.send.iter_mut() {
             list.iter_mut().for_each(|i| *i = new_index[*i]);
         }
     }
 
-    /// Gives the halo particles their owners' state `(x, u, ρ)`.
+    /// Gives the halo particles their owners' state `(x, u, ρ)`: records of a fixed
+    /// size, written and read in parallel over the particles.
     pub fn refresh(&self, p: &mut Particles<D>) {
         let start = Instant::now();
-        let out: Vec<Vec<u8>> = (self.send.par_iter())
+        let len = state_len::<D>();
+        let out: Vec<Vec<u8>> = (self.send.iter())
             .map(|list| {
-                let mut w = Writer::default();
-                list.iter().for_each(|&i| w.state(p, i));
-                w.0
+                let mut bytes = vec![0u8; list.len() * len];
+                (bytes.par_chunks_mut(len).zip(list.par_iter()))
+                    .for_each(|(record, &i)| put_state(record, p, i));
+                bytes
             })
             .collect();
         let bytes = out.iter().map(Vec::len).sum::<usize>() as u64;
-        for (q, got) in self.exchange(out).iter().enumerate() {
-            let mut r = Reader::new(got);
-            self.recv[q].iter().for_each(|&i| r.state(p, i));
-        }
+        let mut seconds = start.elapsed().as_secs_f64();
+        let got = self.exchange(out);
+        let start = Instant::now();
+        (p.x.par_iter_mut().zip(p.u.par_iter_mut()))
+            .zip(p.rho.par_iter_mut().zip(self.source.par_iter()))
+            .for_each(|((x, u), (rho, source))| {
+                if let Some((q, k)) = *source {
+                    let at = k as usize * len;
+                    (*x, *u, *rho) = get_state(&got[q as usize][at..at + len]);
+                }
+            });
         let mut t = self.traffic.lock().expect("traffic lock");
         t.refreshes += 1;
         t.refresh_bytes += bytes;
-        t.refresh_seconds += start.elapsed().as_secs_f64();
+        seconds += start.elapsed().as_secs_f64();
+        t.refresh_seconds += seconds;
     }
 
     /// Every process's own particles (with their shifting velocities), gathered on

@@ -116,18 +116,43 @@ impl<'a> Reader<'a> {
             Kind::Fluid
         }
     }
+}
 
-    /// Sets the state `(x, u, ρ)` of particle `i` of `p` from the next record.
-    pub(super) fn state<const D: usize>(&mut self, p: &mut Particles<D>, i: usize) {
-        p.x[i] = self.vector();
-        p.u[i] = self.vector();
-        p.rho[i] = self.f64();
+/// Bytes of a state record `(x, u, ρ)` in D dimensions: a fixed size, so that the
+/// records of a message are written and read in parallel.
+pub(super) const fn state_len<const D: usize>() -> usize {
+    (2 * D + 1) * 8
+}
+
+/// Writes the state `(x, u, ρ)` of particle `i` into `out`, [`state_len`] bytes.
+pub(super) fn put_state<const D: usize>(out: &mut [u8], p: &Particles<D>, i: usize) {
+    let values = (p.x[i].iter().chain(p.u[i].iter())).chain(std::iter::once(&p.rho[i]));
+    for (bytes, v) in out.chunks_exact_mut(8).zip(values) {
+        bytes.copy_from_slice(&v.to_ne_bytes());
     }
+}
+
+/// The state `(x, u, ρ)` in a record written by [`put_state`].
+pub(super) fn get_state<const D: usize>(record: &[u8]) -> (Vector<D>, Vector<D>, f64) {
+    let value = |k: usize| f64::from_ne_bytes(record[8 * k..8 * k + 8].try_into().expect("8"));
+    let x = Vector::from_fn(|d, _| value(d));
+    let u = Vector::from_fn(|d, _| value(D + d));
+    (x, u, value(2 * D))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_state_reads_back_as_written() {
+        let mut p = Particles::<2>::default();
+        let (x, u) = (Vector::<2>::new(0.5, -1.25), Vector::<2>::new(3.0, 1e-300));
+        p.push(Kind::Fluid, x, u, 1000.125, 1.0);
+        let mut record = vec![0u8; state_len::<2>()];
+        put_state(&mut record, &p, 0);
+        assert_eq!(get_state::<2>(&record), (x, u, 1000.125));
+    }
 
     #[test]
     fn a_particle_reads_back_as_written() {

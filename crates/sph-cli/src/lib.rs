@@ -298,28 +298,27 @@ fn run(path: &Path, options: RunOptions, procs: &Processes) -> Result<()> {
     // build first: a case that does not build leaves no folder behind
     let text = std::fs::read_to_string(path)?;
     match case.dimension {
-        2 => start(Simulation::<2>::new(case)?, &out, &text, &options, procs),
-        _ => start(Simulation::<3>::new(case)?, &out, &text, &options, procs),
+        2 => start(built::<2>(case, procs)?, &out, &text, &options, procs),
+        _ => start(built::<3>(case, procs)?, &out, &text, &options, procs),
     }
 }
 
-/// The share of this process when the run is split over several (the whole run
-/// otherwise).
-fn split<const D: usize>(sim: Simulation<D>, procs: &Processes) -> Result<Simulation<D>> {
+/// The simulation of a case: this process's share when the run is split over several
+/// (built without the whole run's lists), the whole run otherwise.
+fn built<const D: usize>(case: Case, procs: &Processes) -> Result<Simulation<D>> {
     Ok(match &procs.comm {
-        Some(comm) => sim.distribute(Arc::clone(comm))?,
-        None => sim,
+        Some(comm) => Simulation::new_split(case, Arc::clone(comm))?,
+        None => Simulation::new(case)?,
     })
 }
 
 fn start<const D: usize>(
-    sim: Simulation<D>,
+    mut sim: Simulation<D>,
     out: &Path,
     case_text: &str,
     options: &RunOptions,
     procs: &Processes,
 ) -> Result<()> {
-    let mut sim = split(sim, procs)?;
     let output = procs.is_first().then(|| -> sph_core::Result<Output> {
         let mut output = Output::create(out, options.force)?;
         output.write_text("case.toml", case_text)?;
@@ -353,8 +352,12 @@ fn resume_in<const D: usize>(
     procs: &Processes,
 ) -> Result<()> {
     let (checkpoint, schedule) = restart::read::<D>(file)?;
-    let sim = Simulation::<D>::from_checkpoint(checkpoint, options.until)?;
-    let sim = split(sim, procs)?;
+    let sim = match &procs.comm {
+        Some(comm) => {
+            Simulation::from_checkpoint_split(checkpoint, options.until, Arc::clone(comm))?
+        }
+        None => Simulation::from_checkpoint(checkpoint, options.until)?,
+    };
     let output = procs.is_first().then(|| -> sph_core::Result<Output> {
         let mut output = Output::resume(dir, schedule.snapshots, options.force)?;
         output.resume_series(&sim.series_header(), sim.time())?;

@@ -52,7 +52,24 @@ impl<const D: usize> Simulation<D> {
 
     /// Continues a run from `checkpoint`, to `end` when given, else to the case's end
     /// time. The next step is the one the checkpointed run would have taken, bit for bit.
-    pub fn from_checkpoint(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
+    pub fn from_checkpoint(mut checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
+        let list_positions = std::mem::take(&mut checkpoint.list_positions);
+        let skin = checkpoint.skin;
+        let mut sim = Self::checkpointed(checkpoint, end)?;
+        let support = sim.model.support_radius();
+        let kind = &sim.particles.kind;
+        sim.list = NeighbourList::restore(kind, &sim.domain, support, skin, list_positions)
+            .ok_or_else(|| {
+                SphError::output(
+                    "restart",
+                    "particles are not in the order of their neighbour lists".to_string(),
+                )
+            })?;
+        Ok(sim)
+    }
+
+    /// The state of `checkpoint` in a simulation of its case, without neighbour lists.
+    pub(super) fn checkpointed(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
         let mut case = Case::from_toml_str(&checkpoint.case_toml)?;
         if let Some(end) = end {
             if end.is_nan() || end <= checkpoint.time {
@@ -64,7 +81,7 @@ impl<const D: usize> Simulation<D> {
             }
             case.time.end = end;
         }
-        let mut sim = Self::new(case)?;
+        let mut sim = Self::assemble(case)?;
         let c = checkpoint;
         let corrupt = |what: &str| SphError::output("restart", what.to_string());
         let walls = |p: &Particles<D>| p.len() - p.n_fluid();
@@ -90,15 +107,6 @@ impl<const D: usize> Simulation<D> {
         for (filter, state) in filters.zip(&c.sensor_filters) {
             filter.state = *state;
         }
-        let support = sim.model.support_radius();
-        sim.list = NeighbourList::restore(
-            &c.particles.kind,
-            &sim.domain,
-            support,
-            c.skin,
-            c.list_positions,
-        )
-        .ok_or_else(|| corrupt("particles are not in the order of their neighbour lists"))?;
         sim.particles = c.particles;
         sim.time = c.time;
         sim.dt = c.dt;

@@ -116,6 +116,14 @@ impl<const D: usize> Simulation<D> {
     /// Builds particles and scheme from a case, which is validated first (a case built
     /// in code, or from Python, gets the checks of a case file).
     pub fn new(case: Case) -> Result<Self> {
+        let mut sim = Self::assemble(case)?;
+        sim.rebuild(0.0);
+        sim.state_changed();
+        Ok(sim)
+    }
+
+    /// The particles and scheme of a validated case, before the first list build.
+    fn assemble(case: Case) -> Result<Self> {
         case.validate()?;
         let setup = geometry::build::<D>(&case)?;
         let physics = Physics {
@@ -153,7 +161,7 @@ impl<const D: usize> Simulation<D> {
         check_inflow_speeds(&case, setup.eos.c0)?;
         let open = OpenBoundaries::of(&case, &setup.particles, &setup.domain, &setup.eos)?;
         let forcing = BodyForce::of(&case, &setup.particles)?;
-        let mut sim = Self {
+        Ok(Self {
             case,
             particles: setup.particles,
             domain: setup.domain,
@@ -174,10 +182,7 @@ impl<const D: usize> Simulation<D> {
             forcing,
             ranks: None,
             view: None,
-        };
-        sim.rebuild(0.0);
-        sim.state_changed();
-        Ok(sim)
+        })
     }
 
     pub fn case(&self) -> &Case {

@@ -1,47 +1,74 @@
 //! A simulation split over processes (see [`crate::distributed`]):
-//! [`Simulation::distribute`] keeps this process's share of a whole run, and
+//! [`Simulation::new_split`] and [`Simulation::from_checkpoint_split`] keep this
+//! process's share of a case or restart file, and
 //! [`Simulation::view`] gathers the whole run on process 0 for output, which then
 //! writes exactly what a serial run writes.
 
-use super::Simulation;
-use crate::case::TurbulenceChoice;
+use super::{Checkpoint, Simulation};
+use crate::case::{Case, TurbulenceChoice};
 use crate::distributed::{Communicator, Ranks};
 use crate::error::{Result, SphError};
 use std::sync::Arc;
 
 impl<const D: usize> Simulation<D> {
-    /// Splits a whole run, built alike on every process (from its case or restart
-    /// file), over the processes of `comm` by recursive coordinate bisection, and keeps
-    /// this process's share. Collective. On process 0 the whole run stays as the
+    /// Builds this process's share of a case split over the processes of `comm`
+    /// (the whole run when there is one): every process builds the case's particles
+    /// and keeps its own before the first list build, so that no process builds the
+    /// whole run's lists or evaluates it. Collective. Process 0 also keeps the
     /// [`Self::view`] that output is written from.
-    pub fn distribute(self, comm: Arc<dyn Communicator>) -> Result<Self> {
-        check_splittable(&self)?;
+    pub fn new_split(case: Case, comm: Arc<dyn Communicator>) -> Result<Self> {
         if comm.size() == 1 {
-            return Ok(self);
+            return Self::new(case);
         }
-        let (mut local, view) = if comm.rank() == 0 {
-            let mut local = Self::new(self.case.clone())?;
-            local.particles = self.particles.clone();
-            local.shift_velocity.clone_from(&self.shift_velocity);
-            (local.time, local.dt) = (self.time, self.dt);
-            (local.counters, local.last_acceleration) = (self.counters, self.last_acceleration);
-            (local, Some(Box::new(self)))
+        let mut local = Self::assemble(case)?.split_among(comm)?;
+        local.state_changed();
+        Ok(local)
+    }
+
+    /// [`Self::from_checkpoint`] split over the processes of `comm` as
+    /// [`Self::new_split`] splits a case: every process reads the whole checkpoint's
+    /// particles and keeps its own, on any number of processes. Collective.
+    pub fn from_checkpoint_split(
+        checkpoint: Checkpoint<D>,
+        end: Option<f64>,
+        comm: Arc<dyn Communicator>,
+    ) -> Result<Self> {
+        if comm.size() == 1 {
+            return Self::from_checkpoint(checkpoint, end);
+        }
+        Self::checkpointed(checkpoint, end)?.split_among(comm)
+    }
+
+    /// This process's share of the whole run held, without neighbour lists yet.
+    fn split_among(self, comm: Arc<dyn Communicator>) -> Result<Self> {
+        check_splittable(&self)?;
+        let view = if comm.rank() == 0 {
+            let mut view = Self::assemble(self.case.clone())?;
+            // the particles come with each gather
+            (view.particles, view.shift_velocity) = Default::default();
+            Some(Box::new(view))
         } else {
-            (self, None)
+            None
         };
-        let passes = local.halo_passes();
+        Ok(self.split_over(comm, view))
+    }
+
+    /// Keeps this process's share of the particles held, the whole run's, and builds
+    /// its lists with the halo. Collective.
+    fn split_over(mut self, comm: Arc<dyn Communicator>, view: Option<Box<Self>>) -> Self {
+        let passes = self.halo_passes();
         let ranks = Ranks::split(
             comm,
-            &mut local.particles,
-            local.shift_velocity.as_mut(),
-            &local.domain,
+            &mut self.particles,
+            self.shift_velocity.as_mut(),
+            &self.domain,
             passes,
         );
-        local.ranks = Some(ranks);
-        local.view = view;
-        let reach = local.reach(local.control.acoustic(), local.max_speed());
-        local.rebuild(reach);
-        Ok(local)
+        self.ranks = Some(ranks);
+        self.view = view;
+        let reach = self.reach(self.control.acoustic(), self.max_speed());
+        self.rebuild(reach);
+        self
     }
 
     /// The pair passes whose results an evaluation or a step's start chains (see

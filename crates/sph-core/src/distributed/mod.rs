@@ -288,7 +288,7 @@ impl<const D: usize> Ranks<D> {
                 k += 1;
             }
         }
-        self.owned = (0..p.len()).map(|i| i < n_own).collect();
+        self.owned = self.source.iter().map(Option::is_none).collect();
         self.traffic.lock().expect("traffic lock").halo_sent += sent;
     }
 

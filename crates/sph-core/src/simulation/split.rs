@@ -36,26 +36,20 @@ impl<const D: usize> Simulation<D> {
         if comm.size() == 1 {
             return Self::from_checkpoint(checkpoint, end);
         }
+        // the checkpoint carries the acceleration that sizes the first list skin
         Self::checkpointed(checkpoint, end)?.split_among(comm)
     }
 
-    /// This process's share of the whole run held, without neighbour lists yet.
-    fn split_among(self, comm: Arc<dyn Communicator>) -> Result<Self> {
+    /// Keeps this process's share of the whole run held (which has no neighbour lists
+    /// yet) and builds its lists with the halo; process 0 also keeps an empty copy of
+    /// the run, the [`Self::view`] that the gathers fill. Collective.
+    fn split_among(mut self, comm: Arc<dyn Communicator>) -> Result<Self> {
         check_splittable(&self)?;
-        let view = if comm.rank() == 0 {
+        if comm.rank() == 0 {
             let mut view = Self::assemble(self.case.clone())?;
-            // the particles come with each gather
             (view.particles, view.shift_velocity) = Default::default();
-            Some(Box::new(view))
-        } else {
-            None
-        };
-        Ok(self.split_over(comm, view))
-    }
-
-    /// Keeps this process's share of the particles held, the whole run's, and builds
-    /// its lists with the halo. Collective.
-    fn split_over(mut self, comm: Arc<dyn Communicator>, view: Option<Box<Self>>) -> Self {
+            self.view = Some(Box::new(view));
+        }
         let passes = self.halo_passes();
         let ranks = Ranks::split(
             comm,
@@ -65,10 +59,9 @@ impl<const D: usize> Simulation<D> {
             passes,
         );
         self.ranks = Some(ranks);
-        self.view = view;
         let reach = self.reach(self.control.acoustic(), self.max_speed());
         self.rebuild(reach);
-        self
+        Ok(self)
     }
 
     /// The pair passes whose results an evaluation or a step's start chains (see

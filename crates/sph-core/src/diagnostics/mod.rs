@@ -9,9 +9,11 @@
 //! - Face sensors on the walls, averaged and low-pass filtered ([`sensors`]).
 //! - The stability guard ([`guard`]) and the count of fluid inside walls ([`crossings`]).
 
+pub mod budget;
 mod crossings;
 mod guard;
 pub mod sensors;
+pub mod series;
 
 pub use crossings::wall_crossings;
 pub use guard::find_instability;

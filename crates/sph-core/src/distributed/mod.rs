@@ -29,7 +29,7 @@ pub use communicator::Communicator;
 
 use crate::decomposition::Decomposition;
 use crate::domain::Domain;
-use crate::particles::{permute, retain, Kind, Particles, Vector};
+use crate::particles::{permute, Kind, Particles, Vector};
 use rayon::prelude::*;
 use records::{get_state, put_state, state_len, Reader, Writer};
 use std::sync::{Arc, Mutex};
@@ -84,7 +84,6 @@ impl<const D: usize> Ranks<D> {
     pub fn split(
         comm: Arc<dyn Communicator>,
         p: &mut Particles<D>,
-        shift: Option<&mut Vec<Vector<D>>>,
         domain: &Domain<D>,
         passes: usize,
     ) -> Self {
@@ -92,9 +91,6 @@ impl<const D: usize> Ranks<D> {
         let rank = comm.rank();
         let keep: Vec<bool> = p.x.par_iter().map(|x| split.owner(x) == rank).collect();
         p.retain(&keep);
-        if let Some(v) = shift {
-            retain(v, &keep);
-        }
         let size = comm.size();
         Self {
             comm,
@@ -174,21 +170,12 @@ impl<const D: usize> Ranks<D> {
     /// again when the shares are out of balance, moves the particles that left this
     /// process's region to their owners and gathers the new halo (after the own
     /// particles).
-    pub fn redistribute(
-        &mut self,
-        p: &mut Particles<D>,
-        mut shift: Option<&mut Vec<Vector<D>>>,
-        domain: &Domain<D>,
-        radius: f64,
-    ) {
+    pub fn redistribute(&mut self, p: &mut Particles<D>, domain: &Domain<D>, radius: f64) {
         let own = std::mem::take(&mut self.owned);
         p.retain(&own);
-        if let Some(v) = shift.as_deref_mut() {
-            retain(v, &own);
-        }
         self.rebalance(p, domain);
-        self.migrate(p, shift.as_deref_mut());
-        self.gather_halo(p, shift, domain, self.passes as f64 * radius);
+        self.migrate(p);
+        self.gather_halo(p, domain, self.passes as f64 * radius);
         self.listed_width = (self.passes - 1) as f64 * radius;
     }
 
@@ -228,24 +215,21 @@ impl<const D: usize> Ranks<D> {
 
     /// Sends the particles that left this process's region to their owners and takes
     /// in those that entered it.
-    fn migrate(&mut self, p: &mut Particles<D>, mut shift: Option<&mut Vec<Vector<D>>>) {
+    fn migrate(&mut self, p: &mut Particles<D>) {
         let rank = self.rank();
         let owners: Vec<usize> = p.x.par_iter().map(|x| self.split.owner(x)).collect();
         let mut out: Vec<Writer> = (0..self.size()).map(|_| Writer::default()).collect();
         let mut moved = 0;
         for (i, &q) in owners.iter().enumerate().filter(|(_, &q)| q != rank) {
-            out[q].particle(p, i, shift.as_deref().map(|v| &v[..]));
+            out[q].particle(p, i);
             moved += 1;
         }
         let keep: Vec<bool> = owners.iter().map(|&q| q == rank).collect();
         p.retain(&keep);
-        if let Some(v) = shift.as_deref_mut() {
-            retain(v, &keep);
-        }
         for bytes in self.exchange(out.into_iter().map(|w| w.0).collect()) {
             let mut r = Reader::new(&bytes);
             while !r.is_empty() {
-                r.particle(p, shift.as_deref_mut());
+                r.particle(p);
             }
         }
         self.traffic.lock().expect("traffic lock").migrated += moved;
@@ -253,13 +237,7 @@ impl<const D: usize> Ranks<D> {
 
     /// Sends each process the own particles within `width` of its region and appends
     /// those the others send as this one's halo.
-    fn gather_halo(
-        &mut self,
-        p: &mut Particles<D>,
-        mut shift: Option<&mut Vec<Vector<D>>>,
-        domain: &Domain<D>,
-        width: f64,
-    ) {
+    fn gather_halo(&mut self, p: &mut Particles<D>, domain: &Domain<D>, width: f64) {
         let (rank, n_own) = (self.rank(), p.len());
         let split = &self.split;
         self.send = (0..self.size())
@@ -272,8 +250,7 @@ impl<const D: usize> Ranks<D> {
         let out: Vec<Vec<u8>> = (self.send.iter())
             .map(|list| {
                 let mut w = Writer::default();
-                list.iter()
-                    .for_each(|&i| w.particle(p, i, shift.as_deref().map(|v| &v[..])));
+                list.iter().for_each(|&i| w.particle(p, i));
                 w.0
             })
             .collect();
@@ -283,7 +260,7 @@ impl<const D: usize> Ranks<D> {
             let mut r = Reader::new(&bytes);
             let mut k = 0;
             while !r.is_empty() {
-                r.particle(p, shift.as_deref_mut());
+                r.particle(p);
                 self.source.push(Some((q as u32, k)));
                 k += 1;
             }
@@ -337,41 +314,30 @@ impl<const D: usize> Ranks<D> {
         t.refresh_seconds += seconds;
     }
 
-    /// Every process's own particles (with their shifting velocities), gathered on
-    /// process 0 in the order of their ids; `None` on the others.
-    pub fn gather(
-        &self,
-        p: &Particles<D>,
-        shift: Option<&[Vector<D>]>,
-    ) -> Option<(Particles<D>, Option<Vec<Vector<D>>>)> {
+    /// Every process's own particles, gathered on process 0 in the order of their
+    /// ids; `None` on the others.
+    pub fn gather(&self, p: &Particles<D>) -> Option<Particles<D>> {
         let mut w = Writer::default();
         (0..p.len())
             .filter(|&i| self.owned[i])
-            .for_each(|i| w.particle(p, i, shift));
+            .for_each(|i| w.particle(p, i));
         let mut out = vec![Vec::new(); self.size()];
         out[0] = w.0;
         let got = self.exchange(out);
         if self.rank() != 0 {
             return None;
         }
-        let mut all = Particles::<D> {
-            next_id: p.next_id,
-            ..Default::default()
-        };
-        let mut all_shift = shift.map(|_| Vec::new());
+        let mut all = p.empty_like();
         for bytes in &got {
             let mut r = Reader::new(bytes);
             while !r.is_empty() {
-                r.particle(&mut all, all_shift.as_mut());
+                r.particle(&mut all);
             }
         }
         let mut order: Vec<usize> = (0..all.len()).collect();
         order.sort_unstable_by_key(|&i| all.id[i]);
         all.permute(&order);
-        if let Some(v) = all_shift.as_mut() {
-            permute(v, &order);
-        }
-        Some((all, all_shift))
+        Some(all)
     }
 }
 

@@ -3,50 +3,22 @@
 //! refreshed before an evaluation). Native byte order: the processes of a run share a
 //! machine type.
 
-use crate::particles::{Kind, Particles, Vector};
+use crate::particles::{Kind, Particles, Value, Vector};
 
 /// Appends values to a message.
 #[derive(Default)]
 pub(super) struct Writer(pub(super) Vec<u8>);
 
 impl Writer {
-    fn f64(&mut self, v: f64) {
-        self.0.extend_from_slice(&v.to_ne_bytes());
-    }
-
-    fn vector<const D: usize>(&mut self, v: &Vector<D>) {
-        v.iter().for_each(|&c| self.f64(c));
-    }
-
-    /// Particle `i` of `p` whole, with its shifting velocity when the run keeps one.
-    pub(super) fn particle<const D: usize>(
-        &mut self,
-        p: &Particles<D>,
-        i: usize,
-        shift: Option<&[Vector<D>]>,
-    ) {
-        self.state(p, i);
-        self.f64(p.p[i]);
-        self.f64(p.mass[i]);
-        self.vector(&p.u_wall_visc[i]);
-        self.0.extend_from_slice(&p.id[i].to_ne_bytes());
-        self.0.push(p.kind[i] as u8);
-        if let Some(v) = shift {
-            self.vector(&v[i]);
-        }
+    /// Particle `i` of `p` whole, every column ([`Particles::write_particle`]).
+    pub(super) fn particle<const D: usize>(&mut self, p: &Particles<D>, i: usize) {
+        p.write_particle(i, &mut self.0);
     }
 
     /// The position and kind of particle `i` (for a new bisection).
     pub(super) fn position<const D: usize>(&mut self, p: &Particles<D>, i: usize) {
-        self.vector(&p.x[i]);
-        self.0.push(p.kind[i] as u8);
-    }
-
-    /// The state `(x, u, ρ)` of particle `i`.
-    pub(super) fn state<const D: usize>(&mut self, p: &Particles<D>, i: usize) {
-        self.vector(&p.x[i]);
-        self.vector(&p.u[i]);
-        self.f64(p.rho[i]);
+        p.x[i].put(&mut self.0);
+        p.kind[i].put(&mut self.0);
     }
 }
 
@@ -64,38 +36,9 @@ impl<'a> Reader<'a> {
         self.bytes.is_empty()
     }
 
-    fn take<const N: usize>(&mut self) -> [u8; N] {
-        let (head, rest) = self.bytes.split_at(N);
-        self.bytes = rest;
-        head.try_into().expect("split at N")
-    }
-
-    fn f64(&mut self) -> f64 {
-        f64::from_ne_bytes(self.take())
-    }
-
-    fn vector<const D: usize>(&mut self) -> Vector<D> {
-        Vector::from_fn(|_, _| self.f64())
-    }
-
-    /// Appends the next whole particle to `p` (and its shifting velocity to `shift`).
-    pub(super) fn particle<const D: usize>(
-        &mut self,
-        p: &mut Particles<D>,
-        shift: Option<&mut Vec<Vector<D>>>,
-    ) {
-        p.x.push(self.vector());
-        p.u.push(self.vector());
-        p.rho.push(self.f64());
-        p.p.push(self.f64());
-        p.mass.push(self.f64());
-        p.u_wall_visc.push(self.vector());
-        p.id.push(u32::from_ne_bytes(self.take()));
-        let kind = self.kind();
-        p.kind.push(kind);
-        if let Some(v) = shift {
-            v.push(self.vector());
-        }
+    /// Appends the next whole particle to `p` (which has the writer's columns).
+    pub(super) fn particle<const D: usize>(&mut self, p: &mut Particles<D>) {
+        p.read_particle(&mut self.bytes);
     }
 
     /// Appends the next position and kind.
@@ -104,17 +47,8 @@ impl<'a> Reader<'a> {
         x: &mut Vec<Vector<D>>,
         kind: &mut Vec<Kind>,
     ) {
-        x.push(self.vector());
-        kind.push(self.kind());
-    }
-
-    fn kind(&mut self) -> Kind {
-        let [kind] = self.take();
-        if kind == Kind::Wall as u8 {
-            Kind::Wall
-        } else {
-            Kind::Fluid
-        }
+        x.push(Value::get(&mut self.bytes));
+        kind.push(Value::get(&mut self.bytes));
     }
 }
 
@@ -161,14 +95,14 @@ mod tests {
         p.push(Kind::Fluid, v(1.0), v(2.0), 1000.5, 0.25);
         p.push(Kind::Wall, v(3.0), v(4.0), 999.0, 0.5);
         (p.p[1], p.u_wall_visc[1], p.id[1]) = (12.5, v(7.0), 4_000_000_000);
-        let shift = vec![v(5.0), v(6.0)];
+        p.shift_velocity = Some(vec![v(5.0), v(6.0)]);
         let mut w = Writer::default();
-        w.particle(&p, 1, Some(&shift));
-        w.particle(&p, 0, Some(&shift));
-        let (mut q, mut s) = (Particles::<3>::default(), Vec::new());
+        w.particle(&p, 1);
+        w.particle(&p, 0);
+        let mut q = p.empty_like();
         let mut r = Reader::new(&w.0);
         while !r.is_empty() {
-            r.particle(&mut q, Some(&mut s));
+            r.particle(&mut q);
         }
         assert_eq!(
             (q.x.clone(), q.u.clone(), q.rho.clone()),
@@ -183,7 +117,7 @@ mod tests {
             (12.5, vec![0.5, 0.25], vec![Kind::Wall, Kind::Fluid])
         );
         assert_eq!(
-            (q.id.clone(), q.u_wall_visc[0], s),
+            (q.id.clone(), q.u_wall_visc[0], q.shift_velocity.unwrap()),
             (vec![4_000_000_000, 0], v(7.0), vec![v(6.0), v(5.0)])
         );
     }

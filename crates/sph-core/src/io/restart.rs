@@ -65,7 +65,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
     vector("velocity", &p.u)?;
     vector("wall_viscous_velocity", &p.u_wall_visc)?;
     vector("list_positions", &c.list_positions)?;
-    if let Some(v) = &c.shift_velocity {
+    if let Some(v) = &c.particles.shift_velocity {
         vector("shifting_velocity", v)?;
     }
     crate::io::output::snapshot::write_scalars(&file, p)?;
@@ -230,6 +230,10 @@ impl Reader<'_> {
             kind,
             id,
             u_wall_visc: self.vectors("wall_viscous_velocity", n)?,
+            shift_velocity: match self.file.dataset("shifting_velocity") {
+                Ok(_) => Some(self.vectors("shifting_velocity", n)?),
+                Err(_) => None,
+            },
             next_id,
         };
         let case_bytes: Vec<u8> = self
@@ -239,10 +243,6 @@ impl Reader<'_> {
             .map_err(|e| self.corrupt(format!("no case ({e})")))?;
         let case_toml = String::from_utf8(case_bytes)
             .map_err(|_| self.corrupt("the case text is not UTF-8"))?;
-        let shift_velocity = match self.file.dataset("shifting_velocity") {
-            Ok(_) => Some(self.vectors("shifting_velocity", n)?),
-            Err(_) => None,
-        };
         let checkpoint = Checkpoint {
             case_toml,
             particles,
@@ -259,7 +259,6 @@ impl Reader<'_> {
             },
             last_acceleration: self.attr("last_acceleration")?,
             budget: self.budget()?,
-            shift_velocity,
             sensor_filters: self.sensor_filters()?,
         };
         let schedule = Schedule {

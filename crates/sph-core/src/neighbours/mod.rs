@@ -19,6 +19,9 @@
 //!   in every pass, and the lists are rebuilt less often.
 
 mod grid;
+mod policy;
+
+pub use policy::ListPolicy;
 
 use crate::domain::Domain;
 use crate::particles::{Kind, Particles, Vector};

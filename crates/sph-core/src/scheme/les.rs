@@ -32,8 +32,8 @@ use crate::physics::les::{self, harmonic_mean, Constants, Fields};
 use crate::physics::shifting::Shift;
 use crate::physics::viscosity::physical_k;
 use crate::scheme::model::{
-    fluid_pressure, pressure_and_volume, tensile_pressure, Diffusivities, Model, Physics, Powers,
-    Rates,
+    chained_passes, fluid_pressure, pressure_and_volume, tensile_pressure, Diffusivities, Model,
+    Physics, Powers, Rates,
 };
 use rayon::prelude::*;
 
@@ -55,6 +55,8 @@ pub struct LesScheme<const D: usize, K> {
     powers: Option<Powers>,
     /// The largest `ν + ν_T` and `ν_δ` of the last evaluation.
     diffusivities: Diffusivities,
+    /// Whether the run finds the free surface (shifting or tensile control).
+    free_surface: bool,
 }
 
 /// One fluid particle's pair sums.
@@ -97,7 +99,15 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
             budget,
             powers: None,
             diffusivities: Diffusivities::default(),
+            free_surface: false,
         }
+    }
+
+    /// The model of a run that finds the free surface at each step (tensile control),
+    /// which chains one more neighbour pass.
+    pub fn with_free_surface(mut self, on: bool) -> Self {
+        self.free_surface = on;
+        self
     }
 
     /// The pair sums of fluid particle i over its fluid neighbours.
@@ -312,6 +322,10 @@ impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
 
     fn has_diffusion(&self) -> bool {
         self.constants.diffusion > 0.0
+    }
+
+    fn neighbour_passes(&self) -> usize {
+        chained_passes(self.free_surface)
     }
 
     fn physics(&self) -> &Physics<D> {

@@ -2,7 +2,9 @@
 //! the only place where options are matched. Everything below runs without a
 //! per-pair branch on them.
 
-use crate::case::{Case, DiffusionChoice, TurbulenceChoice, ViscosityChoice, WallCondition};
+use crate::case::{
+    Case, DiffusionChoice, ShiftingChoice, TurbulenceChoice, ViscosityChoice, WallCondition,
+};
 use crate::physics::diffusion::{
     DeltaSph, DensityDiffusion, Ferrari, MolteniColagrossi, NoDiffusion,
 };
@@ -13,6 +15,12 @@ use crate::physics::les;
 use crate::physics::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
 use crate::scheme::les::LesScheme;
 use crate::scheme::model::{Model, Physics, Scheme};
+
+/// Whether a case finds the free surface at each step: δ+-SPH shifting or tensile
+/// control.
+fn finds_free_surface(case: &Case) -> bool {
+    case.scheme.shifting != ShiftingChoice::None || case.scheme.tensile_control
+}
 
 /// Builds the model a case asks for, with physical constants already resolved.
 pub fn build_model<const D: usize>(case: &Case, physics: Physics<D>) -> Box<dyn Model<D>> {
@@ -38,13 +46,14 @@ fn with_kernel<const D: usize, K: Kernel>(
             _ => 0.0,
         };
         let budget = case.diagnostics.energy_budget;
-        return Box::new(LesScheme::new(
+        let les = LesScheme::new(
             kernel,
             les_constants(case, physics.eos.c0),
             physics,
             mu,
             budget,
-        ));
+        );
+        return Box::new(les.with_free_surface(finds_free_surface(case)));
     }
     let delta = s.delta;
     match s.diffusion {
@@ -71,21 +80,22 @@ fn with_diffusion<const D: usize, K: Kernel, Df: DensityDiffusion<D>>(
     kernel: K,
     diffusion: Df,
 ) -> Box<dyn Model<D>> {
-    let budget = case.diagnostics.energy_budget;
     match viscosity_k(case, &physics) {
-        None => finish(physics, kernel, diffusion, Inviscid, budget),
-        Some(k) => finish(physics, kernel, diffusion, Viscous { k }, budget),
+        None => finish(case, physics, kernel, diffusion, Inviscid),
+        Some(k) => finish(case, physics, kernel, diffusion, Viscous { k }),
     }
 }
 
 fn finish<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity>(
+    case: &Case,
     physics: Physics<D>,
     kernel: K,
     diffusion: Df,
     viscosity: V,
-    budget: bool,
 ) -> Box<dyn Model<D>> {
-    Box::new(Scheme::new(kernel, diffusion, viscosity, physics, budget))
+    let budget = case.diagnostics.energy_budget;
+    let scheme = Scheme::new(kernel, diffusion, viscosity, physics, budget);
+    Box::new(scheme.with_free_surface(finds_free_surface(case)))
 }
 
 /// The δ-LES-SPH constants of a case, defaults filled in (LES.md §1): C_S = 0.12,

@@ -2,11 +2,14 @@
 //! [`Checkpoint`]. Continuing from it is the uninterrupted run bit for bit (see
 //! [`crate::io::restart`] for what that takes).
 
-use super::{Counters, EnergyBudget, Simulation};
+use super::{Counters, EnergyBudget, Simulation, State};
 use crate::case::Case;
 use crate::error::{Result, SphError};
 use crate::neighbours::NeighbourList;
 use crate::particles::{Particles, Vector};
+
+/// What a restart file says of sensor filters that do not match its case.
+const FILTERS: &str = "its sensor filters do not match its case";
 
 /// Everything of a [`Simulation`] that the next step depends on.
 #[derive(Debug, Clone)]
@@ -21,7 +24,6 @@ pub struct Checkpoint<const D: usize> {
     pub counters: Counters,
     pub last_acceleration: f64,
     pub budget: Option<EnergyBudget>,
-    pub shift_velocity: Option<Vec<Vector<D>>>,
     /// The state of each filtered sensor's low-pass filter, in sensor order.
     pub sensor_filters: Vec<[f64; 4]>,
 }
@@ -33,20 +35,15 @@ impl<const D: usize> Simulation<D> {
             .map_err(|e| SphError::output("restart", format!("case not serialisable: {e}")))?;
         Ok(Checkpoint {
             case_toml,
-            particles: self.particles.clone(),
-            list_positions: self.list.reference_positions().to_vec(),
-            skin: self.list.skin(),
-            time: self.time,
-            dt: self.dt,
-            counters: self.counters,
-            last_acceleration: self.last_acceleration,
+            particles: self.state.particles.clone(),
+            list_positions: self.stepper.list.reference_positions().to_vec(),
+            skin: self.stepper.list.skin(),
+            time: self.state.time,
+            dt: self.state.dt,
+            counters: self.state.counters,
+            last_acceleration: self.stepper.last_acceleration,
             budget: self.budget,
-            shift_velocity: self.shift_velocity.clone(),
-            sensor_filters: self
-                .sensors
-                .iter()
-                .filter_map(|s| s.filter.map(|f| f.state))
-                .collect(),
+            sensor_filters: self.observers.iter().filter_map(|o| o.memory()).collect(),
         })
     }
 
@@ -56,9 +53,9 @@ impl<const D: usize> Simulation<D> {
         let list_positions = std::mem::take(&mut checkpoint.list_positions);
         let skin = checkpoint.skin;
         let mut sim = Self::checkpointed(checkpoint, end)?;
-        let support = sim.model.support_radius();
-        let kind = &sim.particles.kind;
-        sim.list = NeighbourList::restore(kind, &sim.domain, support, skin, list_positions)
+        let s = &mut sim.stepper;
+        let (support, kind) = (s.model.support_radius(), &sim.state.particles.kind);
+        s.list = NeighbourList::restore(kind, &s.domain, support, skin, list_positions)
             .ok_or_else(|| {
                 SphError::output(
                     "restart",
@@ -85,33 +82,37 @@ impl<const D: usize> Simulation<D> {
         let c = checkpoint;
         let corrupt = |what: &str| SphError::output("restart", what.to_string());
         let walls = |p: &Particles<D>| p.len() - p.n_fluid();
-        if walls(&c.particles) != walls(&sim.particles) {
+        if walls(&c.particles) != walls(&sim.state.particles) {
             return Err(corrupt("its wall particles do not match its case"));
         }
-        if sim.shift_velocity.is_some() {
-            match &c.shift_velocity {
-                Some(v) if v.len() == c.particles.len() => {}
-                _ => {
-                    return Err(corrupt(
-                        "the case shifts particles but no shifting velocity is stored",
-                    ))
-                }
+        let mut particles = c.particles;
+        match (
+            &sim.state.particles.shift_velocity,
+            &particles.shift_velocity,
+        ) {
+            (None, _) => particles.shift_velocity = None,
+            (Some(_), None) => {
+                return Err(corrupt(
+                    "the case shifts particles but no shifting velocity is stored",
+                ))
             }
-            sim.shift_velocity = c.shift_velocity;
+            (Some(_), Some(_)) => {}
         }
-        let filtered = sim.sensors.iter().filter(|s| s.filter.is_some()).count();
-        if filtered != c.sensor_filters.len() {
-            return Err(corrupt("its sensor filters do not match its case"));
+        let mut memories = c.sensor_filters.iter();
+        for o in sim.observers.iter_mut().filter(|o| o.memory().is_some()) {
+            let state = memories.next().ok_or_else(|| corrupt(FILTERS))?;
+            o.recall(*state);
         }
-        let filters = sim.sensors.iter_mut().filter_map(|s| s.filter.as_mut());
-        for (filter, state) in filters.zip(&c.sensor_filters) {
-            filter.state = *state;
+        if memories.next().is_some() {
+            return Err(corrupt(FILTERS));
         }
-        sim.particles = c.particles;
-        sim.time = c.time;
-        sim.dt = c.dt;
-        sim.counters = c.counters;
-        sim.last_acceleration = c.last_acceleration;
+        sim.state = State {
+            particles,
+            time: c.time,
+            dt: c.dt,
+            counters: c.counters,
+        };
+        sim.stepper.last_acceleration = c.last_acceleration;
         sim.budget = c.budget;
         Ok(sim)
     }

@@ -4,7 +4,7 @@
 //! [`Simulation::view`] gathers the whole run on process 0 for output, which then
 //! writes exactly what a serial run writes.
 
-use super::{Checkpoint, Simulation};
+use super::{Checkpoint, Simulation, State};
 use crate::case::{Case, TurbulenceChoice};
 use crate::distributed::{Communicator, Ranks};
 use crate::error::{Result, SphError};
@@ -47,44 +47,16 @@ impl<const D: usize> Simulation<D> {
         check_splittable(&self)?;
         if comm.rank() == 0 {
             let mut view = Self::assemble(self.case.clone())?;
-            (view.particles, view.shift_velocity) = Default::default();
+            view.state.particles = self.state.particles.empty_like();
             self.view = Some(Box::new(view));
         }
-        let passes = self.halo_passes();
-        let ranks = Ranks::split(
-            comm,
-            &mut self.particles,
-            self.shift_velocity.as_mut(),
-            &self.domain,
-            passes,
-        );
-        self.ranks = Some(ranks);
-        let reach = self.reach(self.control.acoustic(), self.max_speed());
-        self.rebuild(reach);
+        let passes = self.stepper.model.neighbour_passes();
+        let s = &mut self.stepper;
+        let ranks = Ranks::split(comm, &mut self.state.particles, &s.domain, passes);
+        s.ranks = Some(ranks);
+        let reach = s.reach(s.max_speed(&self.state.particles));
+        s.rebuild(&mut self.state, reach);
         Ok(self)
-    }
-
-    /// The pair passes whose results an evaluation or a step's start chains (see
-    /// [`crate::distributed`]): the wall extrapolation or the δ-SPH gradient, then the
-    /// pair loop; with shifting or tensile control, the free surface's three (the
-    /// moments, the scan region, the neighbours on the surface). One pass fewer leaves
-    /// a split dam break 1e-6 away from the serial run after 200 steps; with these it
-    /// agrees to round-off (`crates/sph-cli/tests/mpi/main.rs`).
-    fn halo_passes(&self) -> usize {
-        let s = &self.case.scheme;
-        let surface = s.shifting != crate::case::ShiftingChoice::None || s.tensile_control;
-        2 + usize::from(surface)
-    }
-
-    /// This process's share of a split run (`None` when the run is not split).
-    pub fn ranks(&self) -> Option<&Ranks<D>> {
-        self.ranks.as_ref()
-    }
-
-    /// The largest of `value` over the processes of a split run (`value` itself when
-    /// the run is not split). Collective.
-    pub fn max_over_processes(&self, value: f64) -> f64 {
-        self.global_max(value)
     }
 
     /// The whole run, for output and diagnostics: this simulation itself, or in a split
@@ -92,25 +64,30 @@ impl<const D: usize> Simulation<D> {
     /// lists built again for them, and the particles removed counted over all
     /// processes); `None` on the other processes. Collective in a split run.
     pub fn view(&mut self) -> Option<&mut Self> {
-        if self.ranks.is_none() {
+        let Some(ranks) = self.ranks() else {
             return Some(self);
-        }
-        let ranks = self.ranks.as_ref()?;
-        let gathered = ranks.gather(&self.particles, self.shift_velocity.as_deref());
-        let mut removed = [self.counters.removed as f64];
-        ranks.sum(&mut removed);
-        let (particles, shift) = gathered?;
+        };
+        let gathered = ranks.gather(&self.state.particles);
+        let removed = self.removed();
+        let particles = gathered?;
         let view = self.view.as_deref_mut()?;
-        view.particles = particles;
-        view.shift_velocity = shift;
-        (view.time, view.dt) = (self.time, self.dt);
-        view.last_acceleration = self.last_acceleration;
-        let reach = view.reach(view.control.acoustic(), view.max_speed());
-        view.rebuild(reach);
-        view.counters = self.counters;
-        view.counters.removed = removed[0] as u64;
-        for (to, from) in view.sensors.iter_mut().zip(&self.sensors) {
-            to.filter.clone_from(&from.filter);
+        view.state = State {
+            particles,
+            time: self.state.time,
+            dt: self.state.dt,
+            counters: Default::default(),
+        };
+        view.stepper.last_acceleration = self.stepper.last_acceleration;
+        let reach = view
+            .stepper
+            .reach(view.stepper.max_speed(&view.state.particles));
+        view.stepper.rebuild(&mut view.state, reach);
+        view.state.counters = self.state.counters;
+        view.state.counters.removed = removed;
+        for (to, from) in view.observers.iter_mut().zip(&self.observers) {
+            if let Some(state) = from.memory() {
+                to.recall(state);
+            }
         }
         Some(view)
     }

@@ -19,6 +19,22 @@ use crate::time::integrator::{Context, Rk4, Symplectic, TimeIntegrator};
 use crate::time::step_size::TimeStepControl;
 use rayon::prelude::*;
 
+/// The integrator's view of a stepper `$s` at time `$time` (a macro, so that the
+/// fields are borrowed apart from the integrator that takes it).
+macro_rules! context {
+    ($s:expr, $time:expr) => {
+        Context {
+            model: $s.model.as_mut(),
+            list: &$s.list,
+            domain: &$s.domain,
+            open: $s.open.as_ref(),
+            time: $time,
+            forcing: $s.forcing.as_ref(),
+            halo: $s.ranks.as_ref(),
+        }
+    };
+}
+
 /// The stepping machinery of a run (see the module documentation).
 pub struct Stepper<const D: usize> {
     pub(super) model: Box<dyn Model<D>>,
@@ -176,15 +192,7 @@ impl<const D: usize> Stepper<D> {
     /// in the current particle order.
     pub(super) fn rates(&mut self, state: &mut State<D>) -> Rates<D> {
         let mut rates = Rates::default();
-        let mut cx = Context {
-            model: self.model.as_mut(),
-            list: &self.list,
-            domain: &self.domain,
-            open: self.open.as_ref(),
-            time: state.time,
-            forcing: self.forcing.as_ref(),
-            halo: self.ranks.as_ref(),
-        };
+        let mut cx = context!(self, state.time);
         cx.evaluate(&mut state.particles, &mut rates, true, 0.0);
         rates
     }
@@ -220,15 +228,7 @@ impl<const D: usize> Stepper<D> {
         self.surface_terms(state, speed);
         let dt_lists = (self.policy).dt_within(room, speed, self.last_acceleration);
         let owned = self.ranks.as_ref().map(|r| r.owned());
-        let mut cx = Context {
-            model: self.model.as_mut(),
-            list: &self.list,
-            domain: &self.domain,
-            open: self.open.as_ref(),
-            time: state.time,
-            forcing: self.forcing.as_ref(),
-            halo: self.ranks.as_ref(),
-        };
+        let mut cx = context!(self, state.time);
         let local = (self.integrator.begin(&mut state.particles, &mut cx)).max_acceleration(owned);
         let a_max = cx.halo.map_or(local, |r| r.max(local));
         if let (Some(b), Some(now)) = (budget.as_deref_mut(), cx.model.last_powers()) {

@@ -52,7 +52,6 @@ pub struct Stepper<const D: usize> {
     pub(super) forcing: Option<BodyForce<D>>,
     /// This process's share of a run split over several.
     pub(super) ranks: Option<Ranks<D>>,
-    h: f64,
     dx: f64,
     tensile_control: bool,
     guard: StabilityConfig,
@@ -89,7 +88,6 @@ impl<const D: usize> Stepper<D> {
             open,
             forcing,
             ranks: None,
-            h: case.h(),
             dx: case.dx(),
             tensile_control: case.scheme.tensile_control,
             guard: case.stability.clone(),
@@ -128,7 +126,7 @@ impl<const D: usize> Stepper<D> {
     /// shaped by.
     fn shift(&mut self, state: &mut State<D>, speed: f64) -> FreeSurface<D> {
         let dt = state.dt;
-        let cfl_ma = speed * dt / self.h;
+        let cfl_ma = speed * dt / self.control.h;
         let p = &mut state.particles;
         let mut shift = (self.model).shift(p, &self.list, &self.domain, self.dx, cfl_ma);
         if let Some(open) = &self.open {

@@ -11,10 +11,10 @@ pub fn example(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// Path of a reference data file under `../shared/refdata/`.
+/// Path of a reference data file under `docs/validation/data/` (sources and grades in its README).
 pub fn refdata(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/refdata")
+        .join("docs/validation/data")
         .join(name)
 }
 

@@ -24,7 +24,7 @@ from deltasph import plot  # noqa: E402
 HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "dam_break_2d.toml"
 #: Marrone et al. (2011)'s P1 figure, digitised (experiment and δ-SPH), where present
-MARRONE = HERE.parents[2] / "shared" / "refdata" / "dambreak2d_marrone2011_P1.csv"
+MARRONE = HERE.parents[1] / "docs" / "validation" / "data" / "dambreak2d_marrone2011_P1.csv"
 H, G, RHO0 = 0.6, 9.81, 1000.0
 P1 = (3.2196, 0.12)
 

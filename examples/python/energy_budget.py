@@ -3,7 +3,7 @@
 Runs examples/dam_break_2d.toml twice, with δ-SPH diffusion (δ = 0.1) and without
 (standard WCSPH with the same artificial viscosity), and plots the kinetic,
 potential and compressible (internal) energies and their sum against time. The
-dashed line adds the energy taken out by viscosity, diffusion and walls: SCHEME.md
+dashed line adds the energy taken out by viscosity, diffusion and walls: docs/theory.md
 §10 says it stays at zero. Energies are shown as changes from t = 0, scaled by the
 potential energy the column releases when it comes to rest. A run that blows up is plotted up to where it stopped.
 

@@ -4,7 +4,7 @@ how it is run, and how its error is measured against its reference.
 Every case is a TOML file beside this module; a run overrides the particle spacing and
 the scheme (diffusion, integrator, Courant number). `measure` drives the simulation to
 the case's comparison time and returns the error (the number plotted) and extra figures.
-References: analytic solutions, or `../shared/refdata/` (see its README for grades).
+References: analytic solutions, or `docs/validation/data/` (its README gives sources and grades).
 """
 
 import math
@@ -16,7 +16,7 @@ from typing import Callable
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
-REFDATA = HERE.parents[1].parent / "shared" / "refdata"
+REFDATA = HERE.parents[1] / "docs" / "validation" / "data"
 
 
 @dataclass
@@ -151,8 +151,8 @@ def rms_against_marrone(times, signal, n, window):
 
 
 def dam_break(sim):
-    """P1 at y = 0.2H = 0.12 m, the probe of the published δ-SPH runs (refdata README
-    §2a), to t* = 7. The error: RMS difference over t* 2-7 from Marrone et al.'s δ-SPH at
+    """P1 at y = 0.2H = 0.12 m, the probe of the published δ-SPH runs (docs/validation/data/README.md),
+    to t* = 7. The error: RMS difference over t* 2-7 from Marrone et al.'s δ-SPH at
     H/Δx = 320, their converged signal; also against their run at the same H/Δx (40,
     80), the plateau against theirs and Buchner's, the first peak and its time."""
     times, signal = p1_signal(sim, 0.12)
@@ -231,7 +231,7 @@ def rotating_square(sim):
 # 3. Elliptic drop ---------------------------------------------------------------------
 
 def elliptic_drop(sim):
-    """Semi-axes from second moments at A0 t = 0.75 against the ODE (refdata CSV)."""
+    """Semi-axes from second moments at A0 t = 0.75 against the ODE (docs/validation/data)."""
     ref = np.loadtxt(REFDATA / "elliptic_drop_exact.csv", delimiter=",", comments="#",
                      skiprows=2)
     exact = ref[np.argmin(np.abs(ref[:, 0] - 0.75))]
@@ -284,7 +284,7 @@ def patch_impact(sim):
 # 6. Poiseuille flow ---------------------------------------------------------------------------
 
 def poiseuille_exact(y, t, L=1e-3, nu=1e-6, F=2e-4):
-    """Morris et al. (1997), signs corrected (refdata README §7c)."""
+    """Morris et al. (1997), signs corrected (docs/validation/data/README.md §7c)."""
     u = F / (2 * nu) * y * (L - y)
     for n in range(50):
         k = 2 * n + 1

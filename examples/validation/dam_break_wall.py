@@ -33,11 +33,11 @@ import numpy as np
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 OUT = ROOT / "docs" / "validation"
-REFDATA = ROOT.parent / "shared" / "refdata"
+REFDATA = OUT / "data"
 CLI = ROOT / "target" / "release" / "sph-cli"
 H, G, RHO0, LENGTH = 0.6, 9.81, 1000.0, 3.2196
 SENSORS = {"s6mm": 0.006, "s30mm": 0.030, "s60mm": 0.060, "s160mm": 0.160}
-#: De Courcy et al. (2024), means over t* 3.3-5.2 / 2.5-3.0 (refdata README §2b)
+#: De Courcy et al. (2024), means over t* 3.3-5.2 / 2.5-3.0 (docs/validation/data/README.md)
 DE_COURCY = {"s6mm": (0.985, 1.705), "s30mm": (0.915, 1.555), "s60mm": (0.815, 1.113),
              "s160mm": (0.366, 0.062)}
 PLATEAU, IMPACT, COMPARE = (3.3, 5.2), (2.5, 3.0), (2.0, 7.0)
@@ -89,7 +89,7 @@ def running_mean(t, p, width):
 
 
 def read_refdata(name):
-    """A refdata CSV (leading `#` lines, then a header) as a structured array."""
+    """A reference CSV (leading `#` lines, then a header) as a structured array."""
     lines = [l for l in (REFDATA / name).read_text().splitlines() if not l.startswith("#")]
     names = lines[0].strip().split(",")
     values = np.array([[float(v) for v in l.split(",")] for l in lines[1:] if l.strip()])

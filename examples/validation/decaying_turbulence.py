@@ -195,7 +195,7 @@ def filtered_reference(ref, n):
 
 
 def spectral_slope(e):
-    """The least-squares slope of log E against log k over kL ∈ [60, 150] (LES.md V3's
+    """The least-squares slope of log E against log k over kL ∈ [60, 150] (docs/theory.md §13 V3's
     band; shells k = 10 .. 23), from a spectrum E(k), k = 1, 2, ..."""
     k = np.arange(1, len(e) + 1)
     band = (2.0 * np.pi * k >= 60.0) & (2.0 * np.pi * k <= 150.0)

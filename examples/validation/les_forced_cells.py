@@ -1,11 +1,11 @@
-"""LES.md V3 from a finished run: the forced-then-decaying cell array at Re = 10⁴.
+"""docs/theory.md §13 V3 from a finished run: the forced-then-decaying cell array at Re = 10⁴.
 
 Run the case first (t = 3, snapshots every 0.1; about 9 minutes on 2 cores):
 
     sph-cli run examples/les_forced_cells.toml --until 3 --out v3_out
 
 then `python3 examples/validation/les_forced_cells.py v3_out` prints E at t = 1, 2 and
-2.85 against LES.md's windows and writes docs/validation/les_v3.png: E(t) against the
+2.85 against the windows of docs/theory.md §13 and writes docs/validation/les_v3.png: E(t) against the
 forced mode's ODE (with the run's eddy viscosity, and laminar), and the vorticity at
 t = 1, 1.5, 2 and 3 (the velocity gridded onto the 100² cell centres by the kernel, as
 in decaying_turbulence.py, and differentiated spectrally).
@@ -29,7 +29,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 import decaying_turbulence as dt  # noqa: E402
 
 DOCS = pathlib.Path(__file__).resolve().parents[2] / "docs" / "validation"
-#: LES.md V3's windows at L/Δx = 100: (t, lowest, highest)
+#: docs/theory.md §13 V3's windows at L/Δx = 100: (t, lowest, highest)
 WINDOWS = [(1.0, 0.285, np.inf), (2.0, 0.195, 0.245), (2.85, 0.160, 0.200)]
 
 
@@ -84,7 +84,7 @@ def main():
         ax.plot([when, when], [lo, min(hi, 0.4)], "C3", lw=4, alpha=0.5)
     ax.set_xlabel("t U/L")
     ax.set_ylabel("E / (ρ0 U² L²)")
-    ax.set_title("V3 energy (red bars: LES.md's windows)")
+    ax.set_title("V3 energy (red bars: the windows of docs/theory.md §13)")
     ax.legend(fontsize=8)
     n = round(1.0 / dx)
     for slot, when in zip([2, 3, 5, 6], [1.0, 1.5, 2.0, 3.0]):

@@ -33,7 +33,7 @@ surface.
 """,
     "dam_break": """
 P1 is read at y = 0.2H = 0.12 m, where the published δ-SPH runs put their probe: that
-probe reproduces the curve called Buchner's P1 (refdata README §2a), while at the
+probe reproduces the curve called Buchner's P1 (docs/validation/data/README.md), while at the
 experimental sensor's centre, 0.16 m, every 2D SPH code reads a plateau of about 0.37.
 The reference is Marrone et al. (2011)'s δ-SPH at H/Δx = 320 (grade C, hand-digitised);
 the error plotted is the RMS difference of our signal's 0.1 t* moving average from
@@ -85,7 +85,7 @@ takes the known star shape. Shifting breaks the exact conservation of angular mo
 (`Lz_change`, −1.1% to −0.5%, shrinking with Δx).
 """,
     "elliptic_drop": """
-Reference: the ODE of Monaghan (1994), integrated in `../shared/refdata` (grade A).
+Reference: the ODE of Monaghan (1994), integrated in `docs/validation/data` (grade A).
 - The long semi-axis b is within 0.1–0.9% at A0 t = 0.75 in every variant.
 - Kinetic energy, an exact invariant, is kept to 1e-4 to 2e-3.
 - Standard SPH converges: b to 0.12% and the short semi-axis a (`a_error`) from 8.9% to

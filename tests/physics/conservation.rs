@@ -1,4 +1,4 @@
-//! Conservation laws of the discrete scheme (SCHEME.md §4, §5, §10):
+//! Conservation laws of the discrete scheme (docs/theory.md §4, §5, §10):
 //! mass, linear and angular momentum to round-off, and the energy E_k + E_p + E_c
 //! with K = 0 and δ = 0 up to the RK4 time-integration error.
 
@@ -80,7 +80,7 @@ fn mass_is_exact_and_diffusion_moves_no_mass() {
         // every particle is still there once, carrying its own mass through the
         // reorderings of the list rebuilds
         assert_eq!(by_id(&sim), m0);
-        // Σ V_i D_i = 0 because ψ is pair-symmetric (SCHEME.md §5).
+        // Σ V_i D_i = 0 because ψ is pair-symmetric (docs/theory.md §5).
         let rates = sim.rates();
         let p = sim.particles();
         let (mut sum, mut scale) = (0.0, 0.0);

@@ -1,7 +1,7 @@
 //! Dam break in 2D.
 //! - Martin & Moyce (1952) column (height 2 × width a): the surge front Z = x/a against
 //!   T = t·sqrt(2g/a) lies within the scatter of Martin & Moyce and Koshizuka & Oka (1996)
-//!   (`../shared/refdata/dambreak2d_*_surge_front.csv`, grade C digitisations).
+//!   (`docs/validation/data/dambreak2d_*_surge_front.csv`, grade C digitisations).
 //! - δ-SPH benchmark (column 2H × H, tank 5.366H): the front reaches the right wall at
 //!   t·sqrt(g/H) ≈ 2.4-2.5, when the pressure at P1 starts to rise (Buchner 2002 trace).
 

@@ -1,4 +1,4 @@
-//! Free-surface detection (Marrone et al. 2010; SCHEME.md §8) on blocks of fluid at
+//! Free-surface detection (Marrone et al. 2010; docs/theory.md §8) on blocks of fluid at
 //! rest: every particle of the outer layer is flagged, none deeper than 2Δx, and the
 //! normals on flat faces point outward. Fluid along a wall is not a free surface.
 

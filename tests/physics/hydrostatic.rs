@@ -1,4 +1,4 @@
-//! Hydrostatic tank (SCHEME.md §12; Antuono et al. 2010): after t·sqrt(g/H) = 20 the
+//! Hydrostatic tank (docs/theory.md §12; Antuono et al. 2010): after t·sqrt(g/H) = 20 the
 //! δ-SPH pressure matches p = ρ0 g (H - y) everywhere, including the top layers,
 //! while the Molteni-Colagrossi diffusion leaves a clearly larger error near the
 //! free surface (it has no hydrostatic solution there).

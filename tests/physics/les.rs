@@ -1,10 +1,10 @@
-//! δ-LES-SPH against LES.md §2's analytic cases.
+//! δ-LES-SPH against docs/theory.md §13's analytic cases.
 //!
 //! V1, the Taylor-Green vortex at Re = 100 (examples/les_taylor_green.toml, c0 = 20U):
 //! the kinetic energy against the exact exp(-16π²νt), the closure's own effect
 //! (ν_T/ν ≈ 0.2-0.7% here) and the total momentum. Measured, the largest
 //! |E/E_exact - 1| over t ∈ [0, 1] (default shifting a = 8): 3.0% at L/Δx = 50 and 1.14%
-//! at 100 (LES.md's windows: 5% and 2%). The error is the start's transient, while the
+//! at 100 (the windows of docs/theory.md §13: 5% and 2%). The error is the start's transient, while the
 //! lattice first deforms at the saddle points; the decay rate after t = 0.3 is the exact
 //! one within 1%.
 //!
@@ -61,10 +61,10 @@ fn largest_change(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// V1 at L/Δx = 50: the energy within LES.md's 5% of the exact decay (measured 3.0%),
+/// V1 at L/Δx = 50: the energy within the 5% target of the exact decay (measured 3.0%),
 /// the eddy viscosity's effect (against C_S = 0) within 1%, the momentum within
 /// 10⁻³ M U. (Switching the diffusion off as well, C_δ = 0, changes E by 1.07% at this
-/// resolution, just outside LES.md's 1%; `v1_taylor_green_converges` checks that window
+/// resolution, just outside the 1% target; `v1_taylor_green_converges` checks that window
 /// at L/Δx = 100.)
 #[test]
 fn v1_taylor_green_energy_follows_the_exact_decay() {
@@ -109,7 +109,7 @@ fn v1_taylor_green_converges() {
     );
 }
 
-/// E = a²/4 of the forced mode at `times` (increasing), from LES.md's ODE
+/// E = a²/4 of the forced mode at `times` (increasing), from the ODE of docs/theory.md §13
 /// `da/dt = A r(t) - 2νk²a - 2.88 (C_S l)² k³ a²` (the last term the exact projection of
 /// ν_T‖D‖² onto the mode), by RK4 with 10⁻⁴ steps (converged to 10⁻¹²).
 fn cells_ode_energy(cs_l: f64, times: &[f64]) -> Vec<f64> {
@@ -180,7 +180,7 @@ fn v2(spacing: f64) -> ([f64; 2], f64) {
     (errors, ratio)
 }
 
-/// The ODE reproduces LES.md's table (E at t = 0.5 / 0.9: C_S = 0 0.0808 / 0.2744; C_S =
+/// The ODE reproduces the table of docs/theory.md §13 (E at t = 0.5 / 0.9: C_S = 0 0.0808 / 0.2744; C_S =
 /// 0.12 with l = 1/100: 0.0799 / 0.2640, with l = 1/200: 0.0806 / 0.2717) within a unit of
 /// the last digit (the largest difference 0.6 units, 0.27176 for 0.2717),
 /// so the table's predictions and windows apply to this forcing.
@@ -201,7 +201,7 @@ fn v2_ode_matches_les_md() {
     }
 }
 
-/// V2 at L/Δx = 100, LES.md's windows: |E_A/ODE - 1| ≤ 3% at t = 0.5 and ≤ 4% at 0.9
+/// V2 at L/Δx = 100, the windows of docs/theory.md §13: |E_A/ODE - 1| ≤ 3% at t = 0.5 and ≤ 4% at 0.9
 /// (measured -0.8% and -1.9%), E_A - E_B within [0.6, 1.6] × the ODE's 0.0104
 /// (measured 0.78 ×; l = h would give 3.7 ×, l = 2h 10 ×). About 2 minutes on 2 cores.
 #[test]
@@ -212,7 +212,7 @@ fn v2_forced_cells_follow_the_ode() {
     assert!((0.6..=1.6).contains(&ratio), "ΔE = {ratio} × the ODE's");
 }
 
-/// V2 at L/Δx = 200: |E_A/ODE - 1| ≤ 2% (LES.md), and ΔE within [0.6, 1.6] × the ODE's
+/// V2 at L/Δx = 200: |E_A/ODE - 1| ≤ 2% (docs/theory.md §13), and ΔE within [0.6, 1.6] × the ODE's
 /// 0.0027. About 20 minutes on 2 cores:
 /// `cargo test --release --test physics v2_forced_cells_converge -- --ignored --nocapture`.
 #[test]
@@ -227,7 +227,7 @@ fn v2_forced_cells_converge() {
 }
 
 /// V3, forced until t = 1, then decaying through 2D turbulence (the same case to t = 3):
-/// LES.md's windows at L/Δx = 100, E(1) ≥ 0.285, E(2) ∈ [0.195, 0.245], E(2.85) ∈
+/// the windows of docs/theory.md §13 at L/Δx = 100, E(1) ≥ 0.285, E(2) ∈ [0.195, 0.245], E(2.85) ∈
 /// [0.160, 0.200] (measured 0.3175, 0.2053, 0.1703; the laminar mode would keep 0.339,
 /// 0.263, 0.212). About 6 minutes on 2 cores:
 /// `cargo test --release --test physics v3_forced_then_decaying -- --ignored --nocapture`.

@@ -67,7 +67,7 @@ fn hydrostatic_tank_holds_to_t_star_200() {
 /// The 2D dam break with δ-SPH and no viscosity (α = 0) to t·sqrt(g/H) = 20, through
 /// the impact, the re-entrant jet and the sloshing that follows, at H/Δx = 20:
 /// - it completes;
-/// - the energy balance of SCHEME.md §10 closes: E_k + E_p + E_c plus the energy taken
+/// - the energy balance of docs/theory.md §10 closes: E_k + E_p + E_c plus the energy taken
 ///   out by the diffusive and wall powers, −∫(P_D + P_W)dt, stays at its initial value.
 ///   The residual is the time-integration error of the trapezoidal power integral
 ///   against RK4's state (0.38% of ΔE_p,∞, the potential energy the column releases)

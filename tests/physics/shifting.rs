@@ -1,4 +1,4 @@
-//! δ+-SPH particle shifting (Sun et al. 2017; SCHEME.md §9).
+//! δ+-SPH particle shifting (Sun et al. 2017; docs/theory.md §9).
 
 use deltasph_suite::example_case;
 use sph_core::{Kind, Simulation, Vector};

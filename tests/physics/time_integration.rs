@@ -1,4 +1,4 @@
-//! Temporal order of RK4 with frozen diffusion (SCHEME.md §6): the step halved three
+//! Temporal order of RK4 with frozen diffusion (docs/theory.md §6): the step halved three
 //! times on a smooth flow, against a run at a sixteenth of the step.
 
 use sph_core::{Case, Simulation};

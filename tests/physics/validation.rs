@@ -70,7 +70,7 @@ fn elliptic_drop_follows_the_exact_ellipse() {
 }
 
 /// Start-up Poiseuille flow (Morris et al. 1997), the series solution with the signs
-/// corrected as in `../shared/refdata/README.md` §7c.
+/// corrected as in `docs/validation/data/README.md`.
 fn poiseuille_exact(y: f64, t: f64) -> f64 {
     let (l, nu, f) = (1e-3, 1e-6, 2e-4);
     let mut u = f / (2.0 * nu) * y * (l - y);

@@ -1,5 +1,5 @@
-"""The forced cell array of LES.md V2/V3 (examples/les_forced_cells.toml): the mode's ODE
-in the V3 script uses the case file's forcing constants and reproduces LES.md's table,
+"""The forced cell array of docs/theory.md §13 V2/V3 (examples/les_forced_cells.toml): the mode's ODE
+in the V3 script uses the case file's forcing constants and reproduces the table of docs/theory.md §13,
 and the case's `[forcing]` drives the flow as the ODE says in its first instants."""
 import pathlib
 import sys
@@ -15,7 +15,7 @@ CASE = tomllib.loads((ROOT / "examples" / "les_forced_cells.toml").read_text())
 
 
 def test_the_mode_ode_reproduces_les_md():
-    """LES.md V2's table: E(0.5)/E(0.9) = 0.0808/0.2744 without closure, 0.0799/0.2640
+    """docs/theory.md §13 V2's table: E(0.5)/E(0.9) = 0.0808/0.2744 without closure, 0.0799/0.2640
     with C_S = 0.12 and l = 1/100 (four digits)."""
     laminar, closure = v3.mode_energy(CASE, 0.0, 1.0), v3.mode_energy(CASE, 0.0012, 1.0)
     assert [round(float(laminar(t)), 4) for t in (0.5, 0.9)] == [0.0808, 0.2744]

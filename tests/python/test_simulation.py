@@ -142,7 +142,7 @@ def test_energies_and_budget(coarse_dam_break):
     sim.run(until=0.3)
     e = sim.energies()
     assert e["kinetic"] > 0.0 and e["dissipated"] > 0.0
-    # SCHEME.md §10: E_k + E_p + E_c + dissipated is conserved. The Rust suite closes
+    # docs/theory.md §10: E_k + E_p + E_c + dissipated is conserved. The Rust suite closes
     # the 3D budget within 2% of the dissipated energy; the same bound holds here.
     residual = e["total"] + e["dissipated"] - e0["total"]
     assert abs(residual) < 0.02 * e["dissipated"], (residual, e["dissipated"])

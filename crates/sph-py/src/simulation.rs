@@ -509,7 +509,7 @@ impl PySimulation {
     }
 
     /// Energies of the fluid [J] (per unit depth in 2D): ``kinetic``, ``potential``,
-    /// ``internal`` (compressible, SCHEME.md §10), ``total`` (their sum) and
+    /// ``internal`` (compressible, docs/theory.md §10), ``total`` (their sum) and
     /// ``dissipated``: the energy taken out so far by viscosity, density diffusion and
     /// the walls, -∫(P_V + P_D + P_W) dt, so that ``total + dissipated`` stays
     /// constant; None unless the case sets ``diagnostics.energy_budget = true``.

@@ -352,7 +352,7 @@ pub struct SchemeConfig {
     #[serde(default)]
     pub tensile_control: bool,
     /// Turbulence closure: `delta_les` turns viscosity and density diffusion into LES
-    /// closures and moves particles quasi-Lagrangianly (δ-LES-SPH, SCHEME.md §11).
+    /// closures and moves particles quasi-Lagrangianly (δ-LES-SPH, docs/theory.md §11).
     #[serde(default = "default_turbulence")]
     pub turbulence: TurbulenceChoice,
     /// C_S of the eddy viscosity `ν_T = (C_S l)² ‖D‖` (`delta_les`). Default: 0.12.
@@ -540,7 +540,7 @@ pub struct DiagnosticsConfig {
     /// and max |Δρ/ρ0|.
     #[serde(default)]
     pub energy: bool,
-    /// Also integrate the viscous, diffusive and wall powers (SCHEME.md §10), computed in
+    /// Also integrate the viscous, diffusive and wall powers (docs/theory.md §10), computed in
     /// the first evaluation of each step.
     #[serde(default)]
     pub energy_budget: bool,

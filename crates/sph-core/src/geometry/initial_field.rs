@@ -74,7 +74,7 @@ pub fn standing_wave_frequency(length: f64, depth: f64, g: f64) -> f64 {
 /// Initial pressure of the rotating square patch over `ρ0 ω²`: the solution of
 /// `∇²p = 2` on the square of side L centred at the origin with p = 0 on its edges,
 /// `Σ_{m,n odd} -32 / (m n π² [(mπ/L)² + (nπ/L)²]) sin(mπx*/L) sin(nπy*/L)`,
-/// `x* = x + L/2` (refdata README §5; the terms fall as 1/(m n (m² + n²))).
+/// `x* = x + L/2` (docs/validation/data/README.md; the terms fall as 1/(m n (m² + n²))).
 pub fn rotating_square_pressure(x: f64, y: f64, side: f64) -> f64 {
     const TERMS: usize = 60;
     let (xs, ys) = ((x + 0.5 * side) / side, (y + 0.5 * side) / side);

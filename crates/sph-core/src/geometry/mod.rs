@@ -498,7 +498,7 @@ mod tests {
         }
     }
 
-    /// The centre value quoted in `../shared/refdata/README.md` §5, -0.147343 ρ0 ω² L²,
+    /// The centre value quoted in `docs/validation/data/README.md`, -0.147343 ρ0 ω² L²,
     /// and p = 0 on the edges.
     #[test]
     fn rotating_square_pressure_series() {

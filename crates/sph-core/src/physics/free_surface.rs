@@ -1,6 +1,6 @@
 //! Free-surface detection (Marrone, Colagrossi, Le Touzé & Graziani 2010, "Fast
 //! free-surface detection and level-set function definition in SPH solvers",
-//! J. Comput. Phys. 229:3652; SCHEME.md §8).
+//! J. Comput. Phys. 229:3652; docs/theory.md §8).
 //!
 //! - `λ_i`, the smallest eigenvalue of `B_i = Σ_j (x_j - x_i) ⊗ ∇_i W_ij V_j`, is about 1
 //!   inside the fluid, about 0.5 at the surface and about 0 for an isolated particle.

@@ -1,6 +1,6 @@
 //! The closure fields of δ-LES-SPH (Di Mascio, Antuono, Colagrossi & Marrone 2017,
 //! Phys. Fluids 29:035102; Antuono, Marrone, Di Mascio & Colagrossi 2021, Phys. Fluids
-//! 33:015102; SCHEME.md §11, LES.md §1), gathered per particle in one neighbour pass:
+//! 33:015102; docs/theory.md §11), gathered per particle in one neighbour pass:
 //!
 //! ```text
 //! L_i   = [Σ_j (x_j - x_i) ⊗ ∇_iW_ij V_j]⁻¹
@@ -11,8 +11,8 @@
 //! δu_i  = δũ_i min(1, (U_max/2)/|δũ_i|)
 //! ```
 //!
-//! The shifting prefactor is an open point of the papers (LES.md §3): `a = 2` is
-//! LES.md's reading, `a = 4` the δ+-SPH shift `CFL·Ma (2h)²` per step as a velocity;
+//! The shifting prefactor is an open point of the papers (docs/theory.md §11.4): `a = 2` is
+//! one public reading, `a = 4` the δ+-SPH shift `CFL·Ma (2h)²` per step as a velocity;
 //! the default `a = 8` is what the Taylor-Green decay asks for (docs/validation/les.md:
 //! the largest energy error over t ∈ [0, 1] at L/Δx = 50 and 100 is 22% and 7.2% with
 //! a = 2, 8.6% and 2.8% with 4, 3.0% and 1.3% with 8).
@@ -232,7 +232,7 @@ pub(crate) mod tests {
     /// ‖D‖ = √(2 D:D) of a shear u = (U sin 2πy, 0) is 2πU|cos 2πy| (the √2 convention:
     /// the other one is off by 41%). The renormalised gradient on the lattice (Wendland
     /// C2, h = 2Δx) underestimates the sine's slope at second order: measured 5.38e-3 at
-    /// L/Δx = 64 and 1.35e-3 at 128 (ratio 3.99). LES.md's 1e-3 at 64 is below this
+    /// L/Δx = 64 and 1.35e-3 at 128 (ratio 3.99). The 10⁻³ target at 64 is below this
     /// discretisation error; the test holds 6e-3 at 64 and the order.
     #[test]
     fn strain_rate_norm_of_a_shear_converges_at_second_order() {

@@ -1,11 +1,11 @@
 //! Particle shifting of δ+-SPH (Sun, Colagrossi, Marrone & Zhang 2017, "The δplus-SPH
 //! model: simple procedures for a further improvement of the SPH scheme", Comput.
-//! Methods Appl. Mech. Engrg. 315:25; SCHEME.md §9).
+//! Methods Appl. Mech. Engrg. 315:25; docs/theory.md §9).
 //!
 //! Between steps (at the start of each, with the Δt of the step before) every fluid
 //! particle is displaced by
 //! `δr_i = -CFL·Ma (2h)² Σ_j [1 + R (W_ij/W(Δx))⁴] ∇_i W_ij V_j`, `R = 0.2`,
-//! `CFL·Ma = U_max Δt/h`, with `V_j = m_j/ρ_j` (the form of the talk and SCHEME.md).
+//! `CFL·Ma = U_max Δt/h`, with `V_j = m_j/ρ_j` (the form of the talk, docs/theory.md §9).
 //! The sum runs over fluid and wall neighbours, so walls push particles away.
 //!
 //! Near the free surface (detected by [`crate::physics::free_surface`]):

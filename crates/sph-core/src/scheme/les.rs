@@ -1,5 +1,5 @@
 //! δ-LES-SPH (Di Mascio et al. 2017, Phys. Fluids 29:035102; Antuono et al. 2021, Phys.
-//! Fluids 33:015102; SCHEME.md §11, LES.md §1): viscosity and density diffusion become
+//! Fluids 33:015102; docs/theory.md §11): viscosity and density diffusion become
 //! closures from the local strain rate, and particles move with `û = u + δu`:
 //!
 //! ```text

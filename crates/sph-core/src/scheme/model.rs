@@ -1,4 +1,4 @@
-//! The semi-discrete δ-SPH equations (Antuono et al. 2010, CPC 181:532; SCHEME.md §4-5):
+//! The semi-discrete δ-SPH equations (Antuono et al. 2010, CPC 181:532; docs/theory.md §4-5):
 //!
 //! ```text
 //! dρ_i/dt = -ρ_i Σ_j (u_j - u_i)·∇_iW_ij V_j  +  δ h c0 D_i
@@ -65,7 +65,7 @@ impl<const D: usize> Rates<D> {
     }
 }
 
-/// Rates of change of the mechanical energy due to the dissipative terms (SCHEME.md §10).
+/// Rates of change of the mechanical energy due to the dissipative terms (docs/theory.md §10).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Powers {
     /// Viscous power `P_V = Σ m_i u_i · (du_i/dt)_visc`, never positive.
@@ -538,7 +538,7 @@ pub(crate) fn pressure_and_volume<const D: usize>(
 }
 
 /// The p_i of fluid particle i in its pair terms. Tensile instability control (Sun et
-/// al. 2018, SCHEME.md §9): where `interior` is given, an interior particle in tension
+/// al. 2018, docs/theory.md §9): where `interior` is given, an interior particle in tension
 /// takes (p_j - p_i) instead of (p_j + p_i). Decided once per particle.
 #[inline(always)]
 pub(crate) fn tensile_pressure(interior: Option<&[bool]>, i: usize, pi: f64) -> f64 {

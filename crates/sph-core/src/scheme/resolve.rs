@@ -98,7 +98,7 @@ fn finish<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity>(
     Box::new(scheme.with_free_surface(finds_free_surface(case)))
 }
 
-/// The δ-LES-SPH constants of a case, defaults filled in (LES.md §1): C_S = 0.12,
+/// The δ-LES-SPH constants of a case, defaults filled in (docs/theory.md §11): C_S = 0.12,
 /// C_δ = 6, l = Δx, U_max = c0/10, shifting factor a = 8 (see [`les`]).
 pub fn les_constants(case: &Case, c0: f64) -> les::Constants {
     let s = &case.scheme;

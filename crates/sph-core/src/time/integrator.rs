@@ -1,7 +1,7 @@
 //! Time integration of `dw/dt = Q(w) + D(w)`, D the density-diffusion part.
 //!
 //! - [`Rk4`]: classical Runge-Kutta 4 with the diffusive term frozen at the start of
-//!   the step (Antuono et al. 2010, CPC 181:532; SCHEME.md §6), so that the δ-SPH
+//!   the step (Antuono et al. 2010, CPC 181:532; docs/theory.md §6), so that the δ-SPH
 //!   gradient pre-pass runs once per step, not four times:
 //!   ```text
 //!   w1 = w0 + Δt/2 [Q(w0) + D(w0)]      w2 = w0 + Δt/2 [Q(w1) + D(w0)]

@@ -1,4 +1,4 @@
-//! Adaptive time step (SCHEME.md §6, LES.md §1):
+//! Adaptive time step (docs/theory.md §6, §11.3):
 //! `Δt = min( CFL h/c0,  C_ν h²/max(ν, ν_m),  C_ψ h²/ν_ρ,  C_f sqrt(h/|a|max) )`,
 //! the acoustic, viscous (Morris et al. 1997), density-diffusion and body-force
 //! (Monaghan 1992) limits; `ν_m` and `ν_ρ` are the largest momentum and density

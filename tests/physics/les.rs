@@ -185,7 +185,7 @@ fn v2(spacing: f64) -> ([f64; 2], f64) {
 /// the last digit (the largest difference 0.6 units, 0.27176 for 0.2717),
 /// so the table's predictions and windows apply to this forcing.
 #[test]
-fn v2_ode_matches_les_md() {
+fn v2_ode_matches_the_published_table() {
     for (cs_l, expected) in [
         (0.0, [0.0808, 0.2744]),
         (0.0012, [0.0799, 0.2640]),

@@ -62,6 +62,30 @@ fn wall_crossings_counts_fluid_inside_the_walls_only() {
     }
 }
 
+/// The count sees fluid deep inside a `[[shape]]` wall too, and none at its surface.
+#[test]
+fn wall_crossings_counts_fluid_inside_wall_shapes() {
+    let text = std::fs::read_to_string(deltasph_suite::example("dam_break_2d.toml")).unwrap();
+    let text = text.replace("spacing = 0.012", "spacing = 0.05")
+        + "\n[[shape]]\nrole = \"wall\"\ncircle = { centre = [2.5, 0.6], radius = 0.3 }\n";
+    let mut sim = Simulation::<2>::new(sph_core::Case::from_toml_str(&text).unwrap()).unwrap();
+    let p = sim.particles();
+    let id = p.id[p.kind.iter().position(|&k| k == Kind::Fluid).unwrap()];
+    let dx = 0.05;
+    for (x, y, expected) in [
+        (2.5, 0.6, 1),                  // at the centre
+        (2.5, 0.6 + 0.3 - dx, 1),       // a spacing inside the surface
+        (2.5, 0.6 + 0.3 - 0.4 * dx, 0), // within half a spacing of it
+        (2.5, 0.6 + 0.3 + dx, 0),       // outside
+    ] {
+        sim.edit(|p| {
+            let k = p.id.iter().position(|&i| i == id).unwrap();
+            p.x[k] = Vector::<2>::new(x, y);
+        });
+        assert_eq!(sim.wall_crossings(), expected, "at ({x}, {y})");
+    }
+}
+
 /// Steps a case to its end and returns the largest number of fluid particles found
 /// inside a wall at any step.
 fn worst_crossings_of<const D: usize>(name: &str, overrides: &[&str]) -> usize {

@@ -17,6 +17,17 @@ def test_unknown_key_is_a_key_error_naming_the_key():
     assert str(info.value).startswith("fluid.viscosity = 0.001: unknown field `viscosity`")
 
 
+def test_a_section_of_the_wrong_type_is_named():
+    config = example("hydrostatic_2d")
+    config["particles"] = [1, 2]
+    with pytest.raises(ds.ConfigError, match=r"^particles = \[1, 2\]: expected a table"):
+        ds.Simulation(config)
+    config = example("hydrostatic_2d")
+    config["tank"] = {"lo": [0.0, 0.0], "hi": [1.0, 1.0]}
+    with pytest.raises(ds.ConfigError, match=r"^tank = .*: expected an array of tables"):
+        ds.Simulation(config)
+
+
 def test_missing_key_names_it():
     config = example("hydrostatic_2d")
     del config["particles"]["spacing"]
@@ -149,8 +160,11 @@ def test_probe_and_run_checks(sim):
         sim.run(until=float("nan"))
     with pytest.raises(TypeError, match="progress = 3"):
         sim.run(until=0.0, progress=3)
-    with pytest.raises(OverflowError):
+    with pytest.raises(ValueError, match=r"n = -1: expected a number of steps, 0 or more"):
         sim.step(-1)
+    with pytest.raises(ValueError, match=r"points\[1\] = \[50\.0, 0\.1\]: expected a point inside "
+                                         r"the domain"):
+        sim.probe_pressure([[0.5, 0.1], [50.0, 0.1]])
 
 
 def test_run_cannot_go_back_in_time():

@@ -6,8 +6,6 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1};
 use signal_hook::flag;
-use sph_core::case::{ShiftingChoice, TurbulenceChoice};
-use sph_core::decomposition::Decomposition;
 use sph_core::io::output::Output;
 use sph_core::io::restart;
 use sph_core::run::{Control, Ending, Run};
@@ -18,7 +16,9 @@ use std::sync::atomic::{AtomicBool, AtomicUsize};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+mod check;
 mod processes;
+mod summary;
 
 use processes::Processes;
 
@@ -137,6 +137,7 @@ impl std::error::Error for Failure {}
 /// the exit code: 0 success, 2 bad input or output problem, 3 the run went unstable,
 /// 128 + n when signal n stopped it (a restart file was written).
 pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -> u8 {
+    sph_core::allocator::return_large_buffers();
     let mut command = Cli::command()
         .name(program.to_string())
         .bin_name(program.to_string());
@@ -189,7 +190,7 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
                 result
             })
         }
-        Command::Check { case, ranks } => check(&case, ranks),
+        Command::Check { case, ranks } => check::check(&case, ranks),
         Command::Preview { case, out, force } => preview(&case, out, force),
         Command::Schema => {
             print!("{}", sph_core::case::json_schema::case_schema());
@@ -239,41 +240,6 @@ fn preview_into<const D: usize>(
 ) -> Result<Vec<PathBuf>> {
     let mut output = Output::create(dir, force)?;
     Ok(sph_core::io::preview::write(&sim, &mut output)?)
-}
-
-fn check(path: &Path, ranks: Option<u32>) -> Result<()> {
-    let case = Case::from_file(path)?;
-    let (summary, report) = match case.dimension {
-        2 => describe::<2>(&case, ranks)?,
-        _ => describe::<3>(&case, ranks)?,
-    };
-    println!(
-        "{}: valid {}D case '{}': {summary}\n{report}",
-        path.display(),
-        case.dimension,
-        case.name,
-    );
-    Ok(())
-}
-
-/// The particle counts, and the report of what each region built (and of the split
-/// among `ranks` processes).
-fn describe<const D: usize>(case: &Case, ranks: Option<u32>) -> Result<(String, String)> {
-    let setup = sph_core::geometry::build::<D>(case)?;
-    let mut report = setup.report(case.dx(), case.support());
-    let sim = Simulation::<D>::new(case.clone())?;
-    if let Some(open) = sim.open_boundaries() {
-        report.push_str(&open.describe(sim.particles()));
-    }
-    if let Some(ranks) = ranks {
-        let (p, domain) = (sim.particles(), sim.domain());
-        let split = Decomposition::bisect(p, domain, ranks as usize);
-        report.push_str(&format!("split among {ranks} processes:\n"));
-        report.push_str(&split.describe(p, domain, case.support()));
-    }
-    let (fluid, all) = (sim.n_fluid(), sim.particles().len());
-    let summary = format!("{fluid} fluid and {} wall particles", all - fluid);
-    Ok((summary, report))
 }
 
 struct RunOptions {
@@ -405,7 +371,12 @@ fn drive<const D: usize>(
     let start = Instant::now();
     let first_step = sim.counters().steps;
     let end = sim.case().time.end;
+    let mut shown = 0;
     let mut on_step = |sim: &Simulation<D>| {
+        for notice in &sim.notices()[shown..] {
+            bar.suspend(|| eprintln!("notice: {notice}"));
+        }
+        shown = sim.notices().len();
         let steps = sim.counters().steps - first_step;
         let steps_per_s = steps as f64 / start.elapsed().as_secs_f64();
         bar.set_position((1000.0 * sim.time() / end) as u64);
@@ -425,9 +396,9 @@ fn drive<const D: usize>(
         },
     );
     bar.finish_and_clear();
-    let processes = process_report(&sim, run.wall.as_secs_f64());
+    let processes = summary::process_report(&sim, run.wall.as_secs_f64());
     if let Some(view) = sim.view() {
-        summary(view, &run);
+        summary::summary(view, &run);
         print!("{}", processes.unwrap_or_default());
     }
     let (time, step) = (sim.time(), sim.counters().steps);
@@ -478,164 +449,5 @@ fn drive<const D: usize>(
             };
             failure(2, format!("{error}; {what}"))
         }
-    }
-}
-
-/// The scheme of the summary: the closure or the diffusion, shifting, tensile control,
-/// viscosity, integrator and CFL number, and whether a body force drives the flow.
-fn scheme_line<const D: usize>(sim: &Simulation<D>) -> String {
-    let case = sim.case();
-    let s = &case.scheme;
-    let mut parts = vec![if s.turbulence == TurbulenceChoice::DeltaLes {
-        let les = sph_core::scheme::resolve::les_constants(case, sim.physics().eos.c0);
-        format!(
-            "δ-LES-SPH (C_S = {}, C_δ = {}, l = {} m, U_max = {} m/s)",
-            les.smagorinsky, les.diffusion, les.length, les.velocity
-        )
-    } else {
-        format!("{:?} diffusion (δ = {})", s.diffusion, s.delta)
-    }];
-    if s.shifting != ShiftingChoice::None {
-        parts.push(format!("{:?} shifting", s.shifting));
-    }
-    if s.tensile_control {
-        parts.push("tensile control".into());
-    }
-    parts.push(format!("{:?} viscosity", s.viscosity));
-    parts.push(format!("{:?}, CFL {}", s.integrator, s.cfl()));
-    if case.forcing.is_some() {
-        parts.push("body force from [forcing]".into());
-    }
-    parts.join(", ")
-}
-
-/// Per process of a split run: its fluid particles and halo, the particles it handed
-/// to other processes at list rebuilds, the halo refreshes and
-/// their bytes, and its time in communication against the run's `wall` time; then the
-/// load imbalance (`None` when the run is not split). Collective.
-fn process_report<const D: usize>(sim: &Simulation<D>, wall: f64) -> Option<String> {
-    const FIELDS: usize = 8;
-    let ranks = sim.ranks()?;
-    let (rank, size) = (ranks.rank(), ranks.size());
-    let t = ranks.traffic();
-    let own = (0..sim.particles().len()).filter(|&i| ranks.owned()[i]);
-    let fluid = own
-        .filter(|&i| sim.particles().kind[i] == sph_core::Kind::Fluid)
-        .count();
-    let mut table = vec![0.0; FIELDS * size];
-    table[FIELDS * rank..][..FIELDS].copy_from_slice(&[
-        fluid as f64,
-        ranks.halo_len() as f64,
-        t.refreshes as f64,
-        t.refresh_bytes as f64,
-        t.seconds,
-        t.rebalances as f64,
-        t.migrated as f64,
-        t.refresh_seconds,
-    ]);
-    ranks.sum(&mut table);
-    let rows: Vec<&[f64]> = table.chunks(FIELDS).collect();
-    let mean = rows.iter().map(|r| r[0]).sum::<f64>() / size as f64;
-    let most = rows.iter().map(|r| r[0]).fold(0.0, f64::max);
-    let mut text = format!(
-        "processes       {size} (recursive coordinate bisection, rebalanced {} times); \
-         imbalance {:.3} at the end (largest fluid share over the mean)\n",
-        rows[0][5],
-        most / mean.max(1.0)
-    );
-    for (r, row) in rows.iter().enumerate() {
-        text.push_str(&format!(
-            "  process {r:<4} {:.0} fluid, halo {:.0}, {:.0} sent to other processes; {:.0} halo \
-             refreshes of {:.1} kB sent ({:.3} ms each to pack and unpack); communication {:.2} s of {wall:.2} s \
-             ({:.1}%)\n",
-            row[0],
-            row[1],
-            row[6],
-            row[2],
-            row[3] / row[2].max(1.0) / 1e3,
-            1e3 * row[7] / row[2].max(1.0),
-            row[4],
-            100.0 * row[4] / wall.max(1e-12),
-        ));
-    }
-    Some(text)
-}
-
-fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
-    let since = run.since;
-    let wall = run.wall.as_secs_f64();
-    let n = sim.n_fluid();
-    let c = sim.counters();
-    let e1 = sim.energies();
-    let initial_energy = run.schedule.initial_energy;
-    println!("case            {} ({}D)", sim.case().name, D);
-    println!(
-        "particles       {} fluid, {} wall",
-        n,
-        sim.particles().len() - n
-    );
-    println!("scheme          {}", scheme_line(sim));
-    println!("sound speed     c0 = {:.4} m/s", sim.physics().eos.c0);
-    println!(
-        "simulated       t = {:.6} s in {} steps (last Δt = {:.3e} s)",
-        sim.time(),
-        c.steps,
-        sim.dt()
-    );
-    println!("wall time       {wall:.2} s");
-    println!(
-        "throughput      {:.3e} particle-steps/s, {:.3e} particle-evaluations/s, {} list builds",
-        n as f64 * (c.steps - since.steps) as f64 / wall,
-        n as f64 * (c.evaluations - since.evaluations) as f64 / wall,
-        c.rebuilds
-    );
-    let (listed, used) = sim.mean_neighbours();
-    println!(
-        "neighbours      {listed:.1} listed per particle (fluid and wall, with the skin), \
-         {used:.1} in the rows of the last step"
-    );
-    println!("max |Δρ/ρ0|     {:.3e}", sim.max_density_variation());
-    println!(
-        "walls           {} fluid particles inside a wall at the end",
-        sim.wall_crossings()
-    );
-    let (lo, hi) = (sim.domain().lo, sim.domain().hi);
-    println!(
-        "removed         {} fluid particles left the domain {:?} – {:?}",
-        sim.removed(),
-        lo.as_slice(),
-        hi.as_slice()
-    );
-    if !sim.case().open_boundary.is_empty() {
-        println!(
-            "created         {} fluid particles entered at inlets",
-            sim.counters().created
-        );
-    }
-    println!(
-        "energy          E_k+E_p+E_c: {:.6e} → {:.6e} J (change {:+.3e})",
-        initial_energy,
-        e1.total(),
-        e1.total() - initial_energy
-    );
-    if let Some(b) = sim.budget() {
-        println!(
-            "                ∫(P_V+P_D+P_W)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
-            b.work(),
-            b.removed_energy
-        );
-        let caveats = sim.budget_caveats();
-        if !caveats.is_empty() {
-            println!(
-                "                the budget is incomplete: {}",
-                caveats.join("; ")
-            );
-        }
-    }
-    if let Some(output) = &run.output {
-        println!(
-            "output          {} (open particles.xmf in ParaView)",
-            output.dir().display()
-        );
     }
 }

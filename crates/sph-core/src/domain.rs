@@ -23,7 +23,27 @@ pub struct Domain<const D: usize> {
     any_periodic: bool,
 }
 
+/// A point as `(x, y[, z])` with 5 significant digits, for messages.
+pub fn point_text<const D: usize>(x: &Vector<D>) -> String {
+    let parts: Vec<String> = x.iter().map(|v| format!("{v:.5}")).collect();
+    format!("({})", parts.join(", "))
+}
+
 impl<const D: usize> Domain<D> {
+    /// The box and its periodic axes, for messages: `(lo) – (hi)`, then
+    /// `periodic along x, y` where any are.
+    pub fn describe(&self) -> String {
+        let mut text = format!("{} – {}", point_text(&self.lo), point_text(&self.hi));
+        let periodic: Vec<&str> = (0..D)
+            .filter(|&d| self.is_periodic(d))
+            .map(|d| ["x", "y", "z"][d])
+            .collect();
+        if !periodic.is_empty() {
+            text.push_str(&format!(", periodic along {}", periodic.join(", ")));
+        }
+        text
+    }
+
     /// An unbounded domain with no periodic direction.
     pub fn open() -> Self {
         Self {

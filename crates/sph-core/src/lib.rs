@@ -11,6 +11,7 @@
 //! [`domain`] → [`decomposition`] → [`distributed`], [`neighbours`] → [`physics`] → [`boundary`] → [`case`] → [`scheme`],
 //! [`geometry`], [`forcing`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
 
+pub mod allocator;
 pub mod boundary;
 pub mod case;
 pub mod decomposition;

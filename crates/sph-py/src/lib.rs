@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    sph_core::allocator::return_large_buffers();
     m.add_class::<simulation::PySimulation>()?;
     m.add_function(wrap_pyfunction!(folder::read_snapshot, m)?)?;
     m.add_function(wrap_pyfunction!(cli, m)?)?;

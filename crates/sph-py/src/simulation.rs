@@ -146,6 +146,10 @@ pub struct PySimulation {
     pressure_fresh: bool,
     /// The run folder of `run(out=...)`.
     folder: Folder,
+    /// The guard's message once it has stopped the run.
+    failed: Option<String>,
+    /// The solver's notices already raised as Python warnings.
+    notices_shown: usize,
 }
 
 impl PySimulation {
@@ -156,11 +160,46 @@ impl PySimulation {
                 _ => Simulation::<3>::new(case).map(Solver::Three),
             })
             .map_err(|e| to_py(py, e))?;
-        Ok(Self {
+        Ok(Self::holding(solver, true, Folder::default()))
+    }
+
+    fn holding(solver: Solver, pressure_fresh: bool, folder: Folder) -> Self {
+        Self {
             solver,
-            pressure_fresh: true,
-            folder: Folder::default(),
-        })
+            pressure_fresh,
+            folder,
+            failed: None,
+            notices_shown: 0,
+        }
+    }
+
+    /// After stepping: the solver's new notices as Python warnings, and a stop by the
+    /// stability guard remembered (`failed`).
+    fn settle(&mut self, py: Python<'_>, outcome: PyResult<()>) -> PyResult<()> {
+        let notices: Vec<String> =
+            each!(&self.solver, s => s.notices()[self.notices_shown..].to_vec());
+        self.notices_shown += notices.len();
+        for notice in notices {
+            let warning = py.get_type::<pyo3::exceptions::PyUserWarning>();
+            PyErr::warn(py, &warning, &std::ffi::CString::new(notice)?, 1)?;
+        }
+        if let Err(e) = &outcome {
+            if e.get_type(py).name()? == "InstabilityError" {
+                self.failed = Some(e.value(py).str()?.to_cow()?.into_owned());
+            }
+        }
+        outcome
+    }
+
+    /// Refuses to step a run the guard has stopped.
+    fn check_not_failed(&self) -> PyResult<()> {
+        match &self.failed {
+            Some(message) => Err(PyValueError::new_err(format!(
+                "the stability guard stopped this simulation ({message}); its state is not \
+                 physical and cannot be stepped on"
+            ))),
+            None => Ok(()),
+        }
     }
 
     /// Steps to `until` writing the run folder `options.out`.
@@ -322,12 +361,13 @@ impl PySimulation {
         let helpers = py.import("deltasph._progress")?;
         let report = helpers.call_method1("reporter", (progress, self.time(), until))?;
         let report_ref = (!report.is_none()).then_some(&report);
+        self.check_not_failed()?;
         let outcome = match folder {
             Some(options) => self.drive_folder(py, until, output_interval, &options, report_ref),
             None => self.drive(py, target, report_ref),
         };
         helpers.call_method1("close", (report,))?;
-        outcome
+        self.settle(py, outcome)
     }
 
     /// Continues the run saved in a restart file (``restart.h5`` of a run folder), bit
@@ -362,16 +402,29 @@ impl PySimulation {
             })
         });
         let (solver, schedule) = built.map_err(|e| to_py(py, e))?;
-        Ok(Self {
+        Ok(Self::holding(
             solver,
-            pressure_fresh: false,
-            folder: Folder::continuing(&path, schedule),
-        })
+            false,
+            Folder::continuing(&path, schedule),
+        ))
     }
 
     /// Advances exactly ``n`` steps (default 1), with the interpreter released.
-    #[pyo3(signature = (n=1))]
-    fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<()> {
+    #[pyo3(signature = (n=None))]
+    fn step(&mut self, py: Python<'_>, n: Option<Bound<'_, PyAny>>) -> PyResult<()> {
+        let n: u64 = match n {
+            None => 1,
+            Some(n) => match n.extract::<u64>() {
+                Ok(n) => n,
+                Err(_) if n.extract::<i64>().is_ok_and(|k| k < 0) => {
+                    return Err(PyValueError::new_err(format!(
+                        "n = {n}: expected a number of steps, 0 or more"
+                    )))
+                }
+                Err(e) => return Err(e),
+            },
+        };
+        self.check_not_failed()?;
         let Some(last) = self.n_steps().checked_add(n) else {
             return Err(PyValueError::new_err(format!(
                 "n = {n}: expected a step count below {} (2^64 minus the steps taken)",
@@ -379,7 +432,22 @@ impl PySimulation {
             )));
         };
         let target = Target::Steps(last);
-        self.drive(py, target, None)
+        let outcome = self.drive(py, target, None);
+        self.settle(py, outcome)
+    }
+
+    /// The stability guard's message if it stopped this simulation (its state arrays
+    /// then hold the blown-up state, kept for inspection), else None.
+    #[getter]
+    fn failed(&self) -> Option<String> {
+        self.failed.clone()
+    }
+
+    /// Mass [kg] of the fluid removed so far because it left the domain (per metre of
+    /// depth in 2D).
+    #[getter]
+    fn removed_mass(&self) -> f64 {
+        each!(&self.solver, s => s.removed_mass())
     }
 
     /// Simulated time [s].
@@ -556,6 +624,15 @@ impl PySimulation {
         self.fresh_pressure();
         each!(&self.solver, s => {
             let points = arrays::points(points)?;
+            let domain = s.domain();
+            if let Some((k, x)) = points.iter().enumerate().find(|(_, x)| domain.escaped(x)) {
+                return Err(PyValueError::new_err(format!(
+                    "points[{k}] = {:?}: expected a point inside the domain {} (outside it \
+                     no fluid can be)",
+                    x.as_slice(),
+                    domain.describe()
+                )));
+            }
             let values: Vec<f64> = points
                 .iter()
                 .map(|x| s.probe_pressure(x).unwrap_or(f64::NAN))
@@ -625,13 +702,18 @@ impl PySimulation {
 
     fn __repr__(&self) -> String {
         format!(
-            "Simulation('{}', {}D, {} fluid + {} wall particles, t = {:.6} s, {} steps)",
+            "Simulation('{}', {}D, {} fluid + {} wall particles, t = {:.6} s, {} steps{})",
             self.name(),
             self.dimension(),
             self.n_fluid(),
             self.n_particles() - self.n_fluid(),
             self.time(),
-            self.n_steps()
+            self.n_steps(),
+            if self.failed.is_some() {
+                ", failed"
+            } else {
+                ""
+            }
         )
     }
 }

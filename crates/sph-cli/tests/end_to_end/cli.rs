@@ -371,6 +371,29 @@ fn fluid_that_leaves_an_open_tank_is_removed_and_counted() {
         .unwrap_or_else(|| panic!("no removed count in {stdout}"));
     println!("removed {removed} of 200 fluid particles; peak memory {peak_kb} kB");
     assert!(removed > 100, "{stdout}");
+    // the case has no [domain]: the first removal is told once, on stderr, with where
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let notices: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("notice:"))
+        .collect();
+    assert_eq!(notices.len(), 1, "{stderr}");
+    assert!(notices[0].contains("left the default domain"), "{stderr}");
+    // and the summary gives their mass: ρ0 Δx² each, within the hydrostatic start's
+    // density spread (ρ0 g H/c0² < 1%)
+    let mass: f64 = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("removed"))
+        .and_then(|l| {
+            l.split(['(', ' '])
+                .find_map(|w| w.parse::<f64>().ok().filter(|_| w.contains('e')))
+        })
+        .unwrap_or_else(|| panic!("no removed mass in {stdout}"));
+    let each = 1000.0 * 0.01 * 0.01;
+    assert!(
+        (mass / (removed as f64 * each) - 1.0).abs() < 0.01,
+        "removed mass {mass} kg for {removed} particles of {each} kg"
+    );
     assert!(peak_kb < 64 * 1024, "peak memory {peak_kb} kB");
     // the time series counts them as they go, and the snapshots shrink with them
     let series = std::fs::read_to_string(out_dir.join("timeseries.csv")).unwrap();
@@ -409,6 +432,76 @@ fn fluid_that_leaves_an_open_tank_is_removed_and_counted() {
         removed,
         "the index follows the particle count"
     );
+}
+
+/// A case too large for the machine is refused before anything is allocated, in one
+/// line naming the spacing, the estimate and the memory; `check` prints the estimate,
+/// and DELTASPH_MEMORY_GIB sets the limit on purpose (here below the small case's need).
+#[test]
+fn a_case_that_does_not_fit_in_memory_is_refused_at_once() {
+    let dir = scratch("memory");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(example("dam_break_2d.toml"))
+        .unwrap()
+        .replace("spacing = 0.012", "spacing = 3e-5");
+    let case = dir.join("huge.toml");
+    std::fs::write(&case, text).unwrap();
+    let start = std::time::Instant::now();
+    let out = cli(&["check", case.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "took {:?}",
+        start.elapsed()
+    );
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    for part in [
+        "particles.spacing = 0.00003",
+        "8.0e8 particles",
+        "TiB",
+        "DELTASPH_MEMORY_GIB",
+    ] {
+        assert!(stderr.contains(part), "{part} not in {stderr}");
+    }
+    let small = example("dam_break_2d.toml");
+    let out = cli(&["check", &small]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("memory: about") && stdout.contains("steps: c0 ="),
+        "{stdout}"
+    );
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sph-cli"))
+        .args(["check", &small])
+        .env("DELTASPH_MEMORY_GIB", "0.001")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && stderr.contains("DELTASPH_MEMORY_GIB is 1.0 MiB"),
+        "{stderr}"
+    );
+}
+
+/// `check` warns when the run would take more than a day: gravity of 10³⁰ m/s² makes
+/// the sound speed 10¹⁶ m/s and the step 10⁻¹⁸ s.
+#[test]
+fn check_warns_of_a_run_longer_than_a_day() {
+    let dir = scratch("long_run");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(example("dam_break_2d.toml"))
+        .unwrap()
+        .replace("gravity = [0.0, -9.81]", "gravity = [0.0, -1e30]");
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    let out = cli(&["check", case.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("warning: this run would take more than a day"),
+        "{stdout}"
+    );
+    let out = cli(&["check", &example("dam_break_2d.toml")]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("warning"));
 }
 
 /// `check` refuses what cannot be meant, in one line naming the key: a probe far

@@ -8,13 +8,14 @@ pub mod json_schema;
 mod open_boundaries;
 mod schema;
 mod shapes;
+mod size;
 mod toml_errors;
 mod validate;
 
 pub use open_boundaries::*;
 pub use schema::*;
 pub use shapes::*;
-pub use validate::MAX_PARTICLES;
+pub use size::{bytes_text, memory_limit, SizeEstimate, MAX_PARTICLES, MEMORY_VARIABLE};
 
 use crate::error::{Result, SphError};
 use std::path::Path;
@@ -59,6 +60,7 @@ impl Case {
 
     /// Deserialises a parsed TOML table (the Python front goes through here too).
     pub fn from_table(table: toml::Table) -> Result<Self> {
+        check_section_types(&table)?;
         let value = toml::Value::Table(table);
         let case: Case = serde_path_to_error::deserialize(value.clone()).map_err(|e| {
             toml_errors::schema_error(&value, e.path().to_string(), e.inner().to_string())
@@ -66,6 +68,42 @@ impl Case {
         case.validate()?;
         Ok(case)
     }
+}
+
+/// The sections that are one table, and those that are arrays of tables.
+const TABLES: [&str; 10] = [
+    "output",
+    "particles",
+    "fluid",
+    "domain",
+    "initial",
+    "forcing",
+    "scheme",
+    "time",
+    "stability",
+    "diagnostics",
+];
+const TABLE_ARRAYS: [&str; 5] = ["fluid_block", "tank", "wall", "shape", "open_boundary"];
+
+/// Refuses a section of the wrong type by its name (serde would read `particles =
+/// [1, 2]` as the struct's fields in order, and blame whatever key failed next).
+fn check_section_types(table: &toml::Table) -> Result<()> {
+    for (key, value) in table {
+        let wrong = if TABLES.contains(&key.as_str()) {
+            (!value.is_table()).then_some("a table ([section] with its keys)")
+        } else if TABLE_ARRAYS.contains(&key.as_str()) {
+            let tables = value
+                .as_array()
+                .is_some_and(|a| a.iter().all(|v| v.is_table()));
+            (!tables).then_some("an array of tables ([[section]] blocks)")
+        } else {
+            None
+        };
+        if let Some(expected) = wrong {
+            return Err(SphError::invalid(key.as_str(), value.to_string(), expected));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

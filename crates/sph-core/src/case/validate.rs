@@ -7,10 +7,6 @@ use super::schema::*;
 use super::shapes::Role;
 use crate::error::{Result, SphError};
 
-/// The most particles a case may ask for: 2^30, beyond the memory of any one machine
-/// this solver runs on (about 300 bytes a particle).
-pub const MAX_PARTICLES: f64 = 1_073_741_824.0;
-
 impl Case {
     /// Value checks beyond types; geometry checks that need particles happen when building.
     pub fn validate(&self) -> Result<()> {
@@ -415,44 +411,6 @@ impl Case {
                 format!(
                     "a box at least the kernel support R = {support:.4} m thick along every axis \
                      (particles.kernel, particles.h_over_dx)"
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// Refuses a spacing that would ask for more particles than any machine holds
-    /// (before a single one is built): fluid blocks, tanks and wall boxes counted as
-    /// lattice boxes.
-    fn check_particle_count(&self) -> Result<()> {
-        let dx = self.dx();
-        let cells = |lo: &[f64], hi: &[f64], pad: f64| -> f64 {
-            lo.iter()
-                .zip(hi)
-                .map(|(l, h)| ((h - l + 2.0 * pad) / dx).round().max(0.0))
-                .product()
-        };
-        let fluid: f64 = self
-            .fluid_block
-            .iter()
-            .map(|b| cells(&b.lo, &b.hi, 0.0))
-            .sum();
-        let tanks: f64 = self
-            .tank
-            .iter()
-            .map(|t| {
-                cells(&t.lo, &t.hi, t.layer_count(self) as f64 * dx) - cells(&t.lo, &t.hi, 0.0)
-            })
-            .sum();
-        let walls: f64 = self.wall.iter().map(|b| cells(&b.lo, &b.hi, 0.0)).sum();
-        let total = fluid + tanks + walls;
-        if total > MAX_PARTICLES {
-            return Err(SphError::invalid(
-                "particles.spacing",
-                self.particles.spacing,
-                format!(
-                    "a spacing giving at most {MAX_PARTICLES:.1e} particles (this one gives \
-                     about {total:.1e})"
                 ),
             ));
         }

@@ -36,6 +36,8 @@ pub struct Setup<const D: usize> {
     pub bodies: Vec<Body>,
     /// Every fluid region and wall, by the ids of its particles, in build order.
     pub regions: Vec<Region>,
+    /// The solids of the `[[shape]]` walls, in case order.
+    pub wall_solids: Vec<solid::Solid>,
 }
 
 pub(super) fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
@@ -148,6 +150,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         gravity,
         bodies,
         regions: built,
+        wall_solids: shapes.walls.into_iter().map(|(_, s)| s).collect(),
     })
 }
 

@@ -86,6 +86,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
         ("next_series", s.next_series),
         ("next_restart", s.next_restart),
         ("initial_energy", s.initial_energy),
+        ("removed_mass", c.counters.removed_mass),
     ];
     for (name, v) in scalars {
         file.new_attr::<f64>().create(name)?.write_scalar(&v)?;
@@ -256,6 +257,7 @@ impl Reader<'_> {
                 rebuilds: self.attr("rebuilds")?,
                 removed: self.attr("removed").unwrap_or(0),
                 created: self.attr("created").unwrap_or(0),
+                removed_mass: self.attr("removed_mass").unwrap_or(0.0),
             },
             last_acceleration: self.attr("last_acceleration")?,
             budget: self.budget()?,

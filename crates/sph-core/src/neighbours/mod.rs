@@ -21,7 +21,7 @@
 mod grid;
 mod policy;
 
-pub use policy::ListPolicy;
+pub use policy::{ListPolicy, MIN_SKIN, SKIN_OVER_REACH};
 
 use crate::domain::Domain;
 use crate::particles::{Kind, Particles, Vector};

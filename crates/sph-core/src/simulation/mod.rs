@@ -5,6 +5,7 @@
 //! the state a step depends on; [`split`] runs it over several processes.
 
 mod checkpoint;
+mod cost;
 mod measure;
 mod split;
 mod state;
@@ -12,6 +13,7 @@ mod stepper;
 
 pub use crate::diagnostics::budget::EnergyBudget;
 pub use checkpoint::Checkpoint;
+pub use cost::{Cost, LONG_RUN};
 pub use state::{Counters, State};
 pub use stepper::Stepper;
 
@@ -43,6 +45,8 @@ pub struct Simulation<const D: usize> {
     budget: Option<EnergyBudget>,
     /// The tanks and walls of the case, in case order (tanks first).
     bodies: Vec<Body>,
+    /// The solids of the `[[shape]]` walls, for [`Self::wall_crossings`].
+    wall_solids: Vec<geometry::solid::Solid>,
     /// The time-series columns, in order.
     observers: Vec<Box<dyn Observer<D>>>,
     /// On process 0 of a split run: the whole run, gathered for output ([`Self::view`]).
@@ -51,8 +55,11 @@ pub struct Simulation<const D: usize> {
 
 impl<const D: usize> Simulation<D> {
     /// Builds particles and scheme from a case, which is validated first (a case built
-    /// in code, or from Python, gets the checks of a case file).
+    /// in code, or from Python, gets the checks of a case file), and refused before
+    /// anything is built if it would not fit the machine's memory.
     pub fn new(case: Case) -> Result<Self> {
+        case.validate()?;
+        case.check_memory(1)?;
         let mut sim = Self::assemble(case)?;
         sim.stepper.rebuild(&mut sim.state, 0.0);
         sim.state_changed();
@@ -89,6 +96,7 @@ impl<const D: usize> Simulation<D> {
             budget: case.diagnostics.energy_budget.then(EnergyBudget::default),
             observers: observers(&case, &setup.bodies),
             bodies: setup.bodies,
+            wall_solids: setup.wall_solids,
             case,
             state: State {
                 particles: setup.particles,
@@ -286,6 +294,23 @@ impl<const D: usize> Simulation<D> {
         removed[0] as u64
     }
 
+    /// The mass [kg] of the fluid removed so far because it left the domain (per unit
+    /// depth in 2D; over all processes of a split run, collective there).
+    pub fn removed_mass(&self) -> f64 {
+        let mut mass = [self.state.counters.removed_mass];
+        if let Some(ranks) = self.ranks() {
+            ranks.sum(&mut mass);
+        }
+        mass[0]
+    }
+
+    /// Messages for the user, in the order they arose (this process's, in a split
+    /// run): today the first removal of fluid by a default domain (one that no
+    /// `[domain]` table set), with the count, the mass and where.
+    pub fn notices(&self) -> &[String] {
+        &self.stepper.notices
+    }
+
     /// The tanks and walls of the case, in case order (tanks first).
     pub fn bodies(&self) -> &[Body] {
         &self.bodies
@@ -402,7 +427,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Fluid particles inside a wall now (see [`diagnostics::wall_crossings`]).
     pub fn wall_crossings(&self) -> usize {
-        diagnostics::wall_crossings(&self.case, &self.state.particles)
+        diagnostics::wall_crossings(&self.case, &self.wall_solids, &self.state.particles)
     }
 
     /// Largest fluid coordinate along `axis` (of the whole run; collective when split).

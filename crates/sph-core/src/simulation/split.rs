@@ -20,6 +20,8 @@ impl<const D: usize> Simulation<D> {
         if comm.size() == 1 {
             return Self::new(case);
         }
+        case.validate()?;
+        case.check_memory(comm.size())?;
         let mut local = Self::assemble(case)?.split_among(comm)?;
         local.state_changed();
         Ok(local)
@@ -69,6 +71,7 @@ impl<const D: usize> Simulation<D> {
         };
         let gathered = ranks.gather(&self.state.particles);
         let removed = self.removed();
+        let removed_mass = self.removed_mass();
         let particles = gathered?;
         let view = self.view.as_deref_mut()?;
         view.state = State {
@@ -84,6 +87,7 @@ impl<const D: usize> Simulation<D> {
         view.stepper.rebuild(&mut view.state, reach);
         view.state.counters = self.state.counters;
         view.state.counters.removed = removed;
+        view.state.counters.removed_mass = removed_mass;
         for (to, from) in view.observers.iter_mut().zip(&self.observers) {
             if let Some(state) = from.memory() {
                 to.recall(state);

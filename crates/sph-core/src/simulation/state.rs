@@ -11,6 +11,8 @@ pub struct Counters {
     pub rebuilds: u64,
     /// Fluid particles removed because they left the domain.
     pub removed: u64,
+    /// Their mass [kg] (per unit depth in 2D).
+    pub removed_mass: f64,
     /// Fluid particles created at inlets.
     pub created: u64,
 }

@@ -55,6 +55,11 @@ pub struct Stepper<const D: usize> {
     dx: f64,
     tensile_control: bool,
     guard: StabilityConfig,
+    /// Whether the domain is the default box around the initial particles (no
+    /// `[domain]` table): the first fluid it removes is reported in `notices`.
+    default_domain: bool,
+    /// Messages for the user, in the order they arose.
+    pub(super) notices: Vec<String>,
 }
 
 impl<const D: usize> Stepper<D> {
@@ -91,6 +96,8 @@ impl<const D: usize> Stepper<D> {
             dx: case.dx(),
             tensile_control: case.scheme.tensile_control,
             guard: case.stability.clone(),
+            default_domain: case.domain.is_none(),
+            notices: Vec::new(),
         }
     }
 
@@ -297,13 +304,26 @@ impl<const D: usize> Stepper<D> {
         if gone == 0 {
             return;
         }
+        let leaving: Vec<usize> = (0..p.len()).filter(|&i| !keep[i]).collect();
         if let Some(b) = budget {
             let ph = self.model.physics();
             let leaving: Vec<bool> = keep.iter().map(|k| !k).collect();
             b.removed_energy += diagnostics::energies_of(p, &leaving, &ph.eos, &ph.gravity).total();
         }
+        let mass: f64 = leaving.iter().map(|&i| p.mass[i]).sum();
+        if self.default_domain && state.counters.removed == 0 {
+            let centre = leaving.iter().map(|&i| p.x[i]).sum::<Vector<D>>() / gone as f64;
+            self.notices.push(format!(
+                "t = {:.6} s: {gone} fluid particles ({mass:.4e} kg) left the default domain \
+                 {} near {} and were removed; a [domain] table sets where fluid may go",
+                state.time,
+                self.domain.describe(),
+                crate::domain::point_text(&centre),
+            ));
+        }
         state.particles.retain(&keep);
         state.counters.removed += gone as u64;
+        state.counters.removed_mass += mass;
     }
 
     /// The stability guard (see [`diagnostics::find_instability`]); in a split run

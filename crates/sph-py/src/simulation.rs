@@ -615,7 +615,8 @@ impl PySimulation {
     /// Pressure [Pa] interpolated (Shepard) from the fluid at ``points``: array-like
     /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
     /// fluid within the kernel support reads NaN (no fluid there, which is not zero
-    /// pressure; ``numpy.nan_to_num`` turns it into zero gauge pressure).
+    /// pressure; ``numpy.nan_to_num`` turns it into zero gauge pressure). A point
+    /// outside the domain, where no fluid can be, raises ValueError.
     fn probe_pressure<'py>(
         &mut self,
         py: Python<'py>,

@@ -3,9 +3,9 @@
 nodes, one process per node with its threads, split by recursive coordinate bisection.
 
 Measured here (2-core machine; docs/scaling.md gives the commands):
-  RATE_PER_CORE  3D particle-steps/s per core (README scaling table: 0.26-0.33 M on
+  RATE_PER_CORE  3D particle-steps/s per core (docs/scaling.md: 0.26-0.33 M on
                  2 threads at 10^5-10^6 particles, h = 2Δx)
-  BYTES          resident bytes per particle in 3D (README: 2 240 at 10^6, h = 2Δx)
+  BYTES          resident bytes per particle in 3D (docs/testing.md: 2 240 at 10^6, h = 2Δx)
   SKIN           the list skin over the support: the dam breaks' halos are 7.0
                  spacings deep at R = 2.66Δx with two passes, 2 (R + s) = 7.0Δx
   REFRESHES      halo refreshes per RK4 step (244 in 61 steps, 3D dam break)

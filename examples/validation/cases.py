@@ -67,7 +67,7 @@ DIFFUSIONS = {
     "δ+-SPH": variant("delta_sph", "delta_plus"),
     "δ-LES-SPH": variant("delta_sph", turbulence="delta_les"),
 }
-#: integrator and its largest stable Courant number (README: stability findings)
+#: integrator and its largest stable Courant number (docs/accuracy.md: stability findings)
 INTEGRATORS = {"RK4": ("rk4", 1.5), "SE2": ("symplectic", 0.15)}
 QUICK = [("δ-SPH", "RK4"), ("δ-SPH", "SE2"), ("MC", "RK4"), ("SPH", "RK4")]
 #: every diffusion with both integrators; shifting only where particle disorder matters

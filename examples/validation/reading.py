@@ -9,8 +9,10 @@ compared with its reference. Wall time is the stepping alone (the set-up exclude
 
 Variants: the density diffusion (`SPH` none, `MC` Molteni-Colagrossi, `Ferrari`, `δ-SPH`
 with δ = 0.1, `δ+-SPH` the same with particle shifting) and the integrator (`RK4` with frozen diffusion at CFL 1.5, `SE2` the
-second-order symplectic scheme at CFL 0.15, its largest stable value in the dam break:
-it blows up in the run-up jet with 0.4, 0.25 and 0.2). Cases with artificial viscosity keep α of
+second-order symplectic scheme at CFL 0.15, the largest value the dam break survived
+when this record was run; since walls stopped pulling lone particles into them it holds
+with 0.25 to 0.4, and 0.25 is the default, so every SE2 cost below is up to 1.7× what
+the default gives). Cases with artificial viscosity keep α of
 their TOML file in every variant; viscous cases keep their physical viscosity.
 The fast subset of these cases runs in CI as `tests/physics/validation.rs`, `tests/physics/hydrostatic.rs`,
 `tests/physics/taylor_green.rs` and `tests/physics/dam_break.rs`.
@@ -56,10 +58,14 @@ theirs over t* 2–7. `vs_marrone_same` compares with their run at the same H/Δ
   lies there; the plateau itself matches.
 - At H/Δx 80 MC RK4 is as close to the reference as δ-SPH (0.151 against 0.147);
   Ferrari is 0.207 and standard SPH 0.189.
+- The fitted order (0.48 for δ-SPH RK4) is not an asymptotic order: the error falls
+  from 0.309 to 0.171 between H/Δx 15 and 40 and then only to 0.147 at 80, towards a
+  floor set by the first impact's shape and by the grade-C digitised reference.
 
 The integrators:
-- SE2 needs CFL 0.15 to survive the run-up jet (the dam-break example's wall model; at
-  0.2 and above a particle is driven into the right wall). It costs 4–6× RK4 at the same
+- SE2 needed CFL 0.15 to survive the run-up jet when this record was run (at 0.2 and
+  above a particle was driven into the right wall; the wall model no longer pulls lone
+  particles and the default is now 0.25, see docs/accuracy.md). It costs 4–6× RK4 at the same
   resolution for a larger error (δ-SPH at H/Δx 40: 0.226 against 0.171), so its runs at
   80 are over the per-run cap.
 - Within 60 s, the lowest error is δ-SPH or MC RK4 at H/Δx 40 (0.17): the RK4 runs at 80
@@ -86,14 +92,17 @@ takes the known star shape. Shifting breaks the exact conservation of angular mo
 """,
     "elliptic_drop": """
 Reference: the ODE of Monaghan (1994), integrated in `docs/validation/data` (grade A).
-- The long semi-axis b is within 0.1–0.9% at A0 t = 0.75 in every variant.
+- The long semi-axis b is within 1.2% at A0 t = 0.75 in every variant and run (0.01–0.7%
+  at R/Δx = 100).
 - Kinetic energy, an exact invariant, is kept to 1e-4 to 2e-3.
-- Standard SPH converges: b to 0.12% and the short semi-axis a (`a_error`) from 8.9% to
-  0.8% between R/Δx = 12.5 and 100 (order about 1 in a). With MC, Ferrari or δ-SPH, a
-  stays 5–10% off. By this time the particle lattice is packed to Δx/2 along x and
-  stretched to 2Δx along y, and a diffusive term acting across that free surface
-  spreads the drop along x. Standard SPH, with no viscosity and a smooth flow, is the
-  most accurate variant of this case, and the cheapest.
+- δ+-SPH is the most accurate variant: b converges at order 2.4 to 0.01% at R/Δx = 100
+  (1.2% at 12.5), and the short semi-axis a (`a_error`) is within 0.1–0.5% at every
+  resolution, its shifting keeping the lattice regular while it is packed to Δx/2 along
+  x and stretched to 2Δx along y.
+- Standard SPH converges: b to 0.12% and a from 8.9% to 0.8% between R/Δx = 12.5 and
+  100 (order about 1 in a), at a third of δ+-SPH's cost per run. With MC, Ferrari or
+  δ-SPH, a stays 5–10% off: a diffusive term acting across the stretched free surface
+  spreads the drop along x.
 """,
 
     "taylor_green_re100": """
@@ -127,7 +136,8 @@ Reference: the start-up series of Morris et al. (1997), signs corrected (grade A
 variant gives the same 2.7–2.9% RMS error from L/Δx = 20 to 80: it does not fall with
 Δx. It is the discretisation error of the Monaghan viscous operator at h/Δx = 2 with
 Wendland C2, which is fixed at fixed h/Δx.
-- At h/Δx = 1.33 (the free-surface default) it is 17%.
+- At h/Δx = 1.33 (the dam-break examples' value) it is 12% (docs/validation/kernel_study.md,
+  which measured 12.2–13% at L/Δx 10–30; an earlier run of this record read 17%).
 - With the quintic spline at h/Δx = 2 it is 0.4%.
 - Use h/Δx ≥ 2 (or a wider kernel) whenever physical viscosity matters.
 """,

@@ -1,7 +1,7 @@
 """The case file's JSON Schema (docs/case.schema.json, printed by `sph-cli schema`;
 crates/sph-cli/tests/end_to_end/cli.rs checks that the two agree): every example case conforms, an
-unknown or misspelt key is flagged as an editor would flag it, and the README's
-case-file reference is the one scripts/case_reference.py generates from the schema, naming
+unknown or misspelt key is flagged as an editor would flag it, and the case-file
+reference (docs/case_file.md) is the one scripts/case_reference.py generates from the schema, naming
 exactly its keys."""
 
 import json
@@ -59,9 +59,9 @@ def schema_keys():
 
 
 def readme_keys():
-    """The keys of the README's case-file reference: the first cell of each row, e.g.
+    """The keys of the case-file reference (docs/case_file.md): the first cell of each row, e.g.
     `[[tank]] lo, hi, layers` or `[initial] type = "taylor_green", amplitude`."""
-    text = (ROOT / "README.md").read_text()
+    text = (ROOT / "docs" / "case_file.md").read_text()
     section = text.split("## Case-file reference", 1)[1].split("\n## ", 1)[0]
     found = set()
     for row in re.findall(r"^\| `([^|]+?)` \|", section, flags=re.M):
@@ -79,15 +79,15 @@ def test_the_readme_reference_is_generated_from_the_schema():
     sys.path.insert(0, str(ROOT / "scripts"))
     import case_reference
 
-    readme = (ROOT / "README.md").read_text()
+    readme = (ROOT / "docs" / "case_file.md").read_text()
     assert case_reference.with_reference(readme) == readme, (
-        "the README's case-file reference is not current: run python3 scripts/case_reference.py")
+        "the case-file reference (docs/case_file.md) is not current: run python3 scripts/case_reference.py")
 
 
 def test_the_readme_reference_names_the_schema_keys():
     schema, readme = schema_keys(), readme_keys()
-    assert not schema - readme, f"keys missing from the README's reference: {schema - readme}"
-    assert not readme - schema, f"README keys the case file does not have: {readme - schema}"
+    assert not schema - readme, f"keys missing from docs/case_file.md: {schema - readme}"
+    assert not readme - schema, f"docs/case_file.md keys the case file does not have: {readme - schema}"
 
 
 def test_the_module_ships_the_same_schema():

@@ -136,8 +136,7 @@ fn folder_options(
 
 /// A weakly-compressible δ-SPH simulation.
 ///
-/// Build it from a dict with the keys of the TOML case file (see the README's case
-/// reference), or with :meth:`Simulation.from_toml`. State arrays are copies in
+/// Build it from a dict with the keys of the TOML case file (see docs/case_file.md), or with :meth:`Simulation.from_toml`. State arrays are copies in
 /// particle-id order: row ``i`` is always the particle created ``i``-th.
 #[pyclass(module = "deltasph", name = "Simulation")]
 pub struct PySimulation {

@@ -58,16 +58,13 @@ fn delta_sph_keeps_the_hydrostatic_pressure_and_molteni_colagrossi_does_not() {
         "δ-SPH: L2 {:.4}, top {:.4}, |u|max {:.2e};  MC: L2 {:.4}, top {:.4}",
         delta.all, delta.top, delta.max_speed, mc.all, mc.top
     );
-    // A few percent of ρ0 g H everywhere: at H/Δx = 20 the kernel truncation at the
-    // surface alone gives about 1%.
-    assert!(delta.all < 0.03, "δ-SPH L2 error {:.4}", delta.all);
-    assert!(delta.top < 0.03, "δ-SPH top-layer error {:.4}", delta.top);
-    // Spurious currents stay far below the free-fall speed sqrt(2gH) = 4.4 m/s.
-    assert!(
-        delta.max_speed < 0.05 * (2.0f64 * 9.81).sqrt(),
-        "|u|max {:.3e}",
-        delta.max_speed
-    );
+    // Measured at H/Δx = 20: L2 0.56% of ρ0 g H, 1.28% in the top layers (where the
+    // kernel is truncated by the surface), spurious currents 1.3e-3 m/s; the bounds
+    // keep about twice that (4× for the currents, which vary most between machines).
+    assert!(delta.all < 0.012, "δ-SPH L2 error {:.4}", delta.all);
+    assert!(delta.top < 0.02, "δ-SPH top-layer error {:.4}", delta.top);
+    // Spurious currents: a thousandth of the free-fall speed sqrt(2gH) = 4.4 m/s.
+    assert!(delta.max_speed < 5e-3, "|u|max {:.3e}", delta.max_speed);
     // The talk's claim, measured: Molteni-Colagrossi is clearly worse near the surface.
     assert!(
         mc.top > 2.0 * delta.top,
@@ -119,6 +116,7 @@ fn wall_pressure_is_hydrostatic_at_the_wall_particles_depth() {
         assert!(checked > 100);
         worst.push((relative, of_scale));
     }
-    assert!(worst[0].0 < 0.01, "{worst:?}");
+    // measured: 0.07% at the start, 1.2% of ρ0 g H at t·sqrt(g/H) = 10
+    assert!(worst[0].0 < 0.002, "{worst:?}");
     assert!(worst[1].1 < 0.03, "{worst:?}");
 }

@@ -24,8 +24,8 @@ def test_the_mode_ode_reproduces_les_md():
 
 def test_the_forcing_drives_the_mode(tmp_path):
     """At L/Δx = 50 to t = 0.2 the particles' kinetic energy is the forced mode's under
-    the closure within 0.2% (measured +0.005%; without the eddy viscosity the mode would
-    have 0.5% more)."""
+    the closure within 0.05% (measured +0.005%; without the eddy viscosity the mode would
+    have 0.5% more, ten times the bound)."""
     import deltasph as ds
 
     cfg = dict(CASE)
@@ -34,4 +34,4 @@ def test_the_forcing_drives_the_mode(tmp_path):
     sim = ds.Simulation(cfg)
     sim.run(0.2, progress=False)
     expected = float(v3.mode_energy(CASE, 0.12 * 0.02, 0.2)(0.2))
-    assert sim.energies()["kinetic"] == pytest.approx(expected, rel=0.002)
+    assert sim.energies()["kinetic"] == pytest.approx(expected, rel=5e-4)

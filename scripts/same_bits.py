@@ -36,8 +36,10 @@ def cases(work):
             ("mpi", d2, 0.4, 2), ("mpiplus", files["plus"], 0.3, 2), ("d3", d3, 0.15, 1)]
 
 
-def run(binary, out, work):
+def run(binary, out, work, serial):
     for name, case, end, ranks in cases(work):
+        if serial and ranks > 1:
+            continue
         cmd = [binary, "run", "-q", case, "--until", str(end), "--out", os.path.join(out, name)]
         if ranks > 1:
             cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
@@ -73,11 +75,13 @@ def main():
     ap.add_argument("old")
     ap.add_argument("new")
     ap.add_argument("--work", default=None)
+    ap.add_argument("--serial", action="store_true",
+                    help="skip the MPI cases (for builds without the mpi feature)")
     args = ap.parse_args()
     work = args.work or tempfile.mkdtemp(prefix="same_bits_")
     os.makedirs(work, exist_ok=True)
     for label, binary in [("old", args.old), ("new", args.new)]:
-        run(os.path.abspath(binary), os.path.join(work, label), work)
+        run(os.path.abspath(binary), os.path.join(work, label), work, args.serial)
     bad = differences(os.path.join(work, "old"), os.path.join(work, "new"))
     print(f"{bad} differences ({work})")
     sys.exit(1 if bad else 0)

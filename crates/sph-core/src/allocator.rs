@@ -8,7 +8,7 @@
 //! 67 → 51 MB, to t = 0.3 s 101 → 61 MB; run time to t = 0.1 s 4.77 s (4.74–4.78)
 //! before, 4.79 s (4.77–4.82) after, three alternated pairs.
 
-/// Buffers from this size [bytes] up are mapped on their own.
+/// Buffers from this size \[bytes\] up are mapped on their own.
 pub const MMAP_THRESHOLD: i32 = 256 * 1024;
 
 /// Fixes the allocator's mmap threshold (glibc on Linux; elsewhere nothing to do). Call

@@ -4,9 +4,11 @@
 
 mod arrays;
 mod config;
+mod edits;
 mod errors;
 mod folder;
 mod simulation;
+mod stepping;
 
 use pyo3::prelude::*;
 

@@ -3,27 +3,26 @@
 
 use crate::arrays;
 use crate::config;
+use crate::edits::{set_density, set_velocities};
 use crate::errors::to_py;
 use crate::folder::{Folder, FolderOptions};
+use crate::stepping::{advance, Target};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sph_core::io::restart;
-use sph_core::{Case, Kind, Simulation, SphError};
+use sph_core::{Case, Simulation};
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// The `kind` of a row whose particle left the domain.
 const REMOVED: u8 = 255;
 
 /// Rows of the state arrays: one per id ever given.
-fn rows<const D: usize>(s: &Simulation<D>) -> usize {
+pub(crate) fn rows<const D: usize>(s: &Simulation<D>) -> usize {
     s.particles().next_id as usize
 }
-
-/// How long the solver runs detached before it looks at Ctrl-C and reports progress.
-const SLICE: Duration = Duration::from_millis(100);
 
 /// The solver, with its dimension resolved at construction.
 enum Solver {
@@ -39,78 +38,6 @@ macro_rules! each {
             Solver::Three($s) => $body,
         }
     };
-}
-
-/// Where a call to `run` or `step` stops.
-#[derive(Clone, Copy)]
-enum Target {
-    /// At time `until` (the last step shortened to land on it), or at `max_steps`.
-    Time { until: f64, max_steps: u64 },
-    /// After exactly this step count.
-    Steps(u64),
-}
-
-impl Target {
-    fn reached<const D: usize>(&self, s: &Simulation<D>) -> bool {
-        match *self {
-            Target::Time { until, max_steps } => {
-                s.time() >= until * (1.0 - 1e-12) || s.counters().steps >= max_steps
-            }
-            Target::Steps(n) => s.counters().steps >= n,
-        }
-    }
-
-    fn limit<const D: usize>(&self, s: &Simulation<D>) -> f64 {
-        match *self {
-            Target::Time { until, .. } => until,
-            Target::Steps(_) => s.case().time.end,
-        }
-    }
-}
-
-/// Steps towards `target` for at most [`SLICE`] of wall time; `Ok(true)` once reached.
-fn advance<const D: usize>(s: &mut Simulation<D>, target: Target) -> Result<bool, SphError> {
-    let start = Instant::now();
-    while !target.reached(s) {
-        s.step_until(target.limit(s))?;
-        if start.elapsed() >= SLICE {
-            return Ok(target.reached(s));
-        }
-    }
-    Ok(true)
-}
-
-fn set_velocities<const D: usize>(
-    s: &mut Simulation<D>,
-    velocities: &Bound<'_, PyAny>,
-) -> PyResult<()> {
-    let u = arrays::read_vectors::<D>(velocities, "velocities", &s.particles().id, rows(s))?;
-    let p = s.particles();
-    let changed_wall = (0..u.len()).find(|&k| p.kind[k] == Kind::Wall && u[k] != p.u[k]);
-    if let Some(k) = changed_wall {
-        return Err(PyValueError::new_err(format!(
-            "velocities: row {} = {:?} is a wall particle, expected its velocity {:?} \
-             (walls move as the case prescribes: a lid at tank.lid_velocity, else at rest)",
-            p.id[k],
-            u[k].as_slice(),
-            p.u[k].as_slice()
-        )));
-    }
-    s.edit(|p| p.u = u);
-    Ok(())
-}
-
-fn set_density<const D: usize>(s: &mut Simulation<D>, density: &Bound<'_, PyAny>) -> PyResult<()> {
-    let rho = arrays::read_scalars(density, "density", &s.particles().id, rows(s))?;
-    if let Some(k) = rho.iter().position(|&r| r <= 0.0) {
-        return Err(PyValueError::new_err(format!(
-            "density: row {} = {}, expected a positive density",
-            s.particles().id[k],
-            rho[k]
-        )));
-    }
-    s.edit(|p| p.rho = rho);
-    Ok(())
 }
 
 fn folder_options(

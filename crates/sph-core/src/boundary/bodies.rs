@@ -27,9 +27,9 @@ pub struct Body {
 /// The load of the fluid on one body.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Load<const D: usize> {
-    /// Pressure force [N] (per unit width in 2D).
+    /// Pressure force \[N\] (per unit width in 2D).
     pub pressure: Vector<D>,
-    /// Viscous force [N] (zero on free-slip walls).
+    /// Viscous force \[N\] (zero on free-slip walls).
     pub viscous: Vector<D>,
     /// Moment of the whole force about the case's moment point [N m]; in 2D only its z
     /// component is non-zero.

@@ -11,8 +11,22 @@ pub fn case_schema() -> String {
     let mut schema = schemars::schema_for!(Case).to_value();
     schema["title"] = "deltasph case file (TOML)".into();
     without_nulls(&mut schema);
+    unescape_brackets(&mut schema);
     let text = serde_json::to_string_pretty(&schema).expect("a schema serialises");
     text + "\n"
+}
+
+/// Doc comments write units as `\[m\]` so that rustdoc does not read them as links;
+/// the descriptions the user reads show `[m]`.
+fn unescape_brackets(value: &mut Value) {
+    match value {
+        Value::String(text) if text.contains('\\') => {
+            *text = text.replace("\\[", "[").replace("\\]", "]");
+        }
+        Value::Object(map) => map.values_mut().for_each(unescape_brackets),
+        Value::Array(items) => items.iter_mut().for_each(unescape_brackets),
+        _ => {}
+    }
 }
 
 /// TOML has no null: an optional key is one that may be left out. Drops the `null`

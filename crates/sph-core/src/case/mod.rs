@@ -3,10 +3,13 @@
 //! naming the key, the value and what was expected ([`toml_errors`] for what serde and
 //! the TOML parser report). All quantities are SI.
 
+mod checks;
+mod diagnostics_options;
 pub mod expression;
 pub mod json_schema;
 mod open_boundaries;
 mod schema;
+mod scheme_options;
 mod shapes;
 mod size;
 mod toml_errors;

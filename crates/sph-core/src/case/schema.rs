@@ -8,6 +8,9 @@ use crate::physics::kernel::KernelChoice;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use super::diagnostics_options::*;
+pub use super::scheme_options::*;
+
 /// A whole case, as written in the TOML file.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -59,7 +62,7 @@ fn default_name() -> String {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ParticlesConfig {
-    /// Initial particle spacing Δx [m].
+    /// Initial particle spacing Δx \[m\].
     pub spacing: f64,
     /// Smoothing length over spacing, h/Δx, in [1, 3]. The default, 2 with Wendland C2
     /// (support 4Δx, as in the δ-SPH papers), has the lowest error at equal wall time
@@ -94,7 +97,7 @@ pub struct FluidConfig {
     /// the `max_velocity` and `Δp = ρ0 |g| H`, H the fluid height.
     #[serde(default = "default_sound_speed_factor")]
     pub sound_speed_factor: f64,
-    /// Background pressure p_b [Pa] added to the EOS (confined flows only).
+    /// Background pressure p_b \[Pa\] added to the EOS (confined flows only).
     #[serde(default)]
     pub background_pressure: f64,
     /// U of the sound-speed rule [m/s]. Default: `max(|u0|, sqrt(2 |g| H))`.
@@ -110,9 +113,9 @@ fn default_sound_speed_factor() -> f64 {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FluidBlockConfig {
-    /// Lower corner [m]. The block shares the tanks' lattice when it is a multiple of Δx.
+    /// Lower corner \[m\]. The block shares the tanks' lattice when it is a multiple of Δx.
     pub lo: Vec<f64>,
-    /// Upper corner [m].
+    /// Upper corner \[m\].
     pub hi: Vec<f64>,
     /// Initial velocity [m/s]. Default: at rest.
     #[serde(default)]
@@ -137,9 +140,9 @@ pub struct FluidBlockConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WallConfig {
-    /// Lower corner [m]. The wall is at least the kernel support R thick along every axis.
+    /// Lower corner \[m\]. The wall is at least the kernel support R thick along every axis.
     pub lo: Vec<f64>,
-    /// Upper corner [m].
+    /// Upper corner \[m\].
     pub hi: Vec<f64>,
     /// Name of the body in the loads' columns. Default: `wall<k>`.
     #[serde(default)]
@@ -159,9 +162,9 @@ pub enum Shape {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TankConfig {
-    /// Lower corner of the inner box [m].
+    /// Lower corner of the inner box \[m\].
     pub lo: Vec<f64>,
-    /// Upper corner of the inner box [m].
+    /// Upper corner of the inner box \[m\].
     pub hi: Vec<f64>,
     /// Number of wall particle layers; fewer than cover the kernel support
     /// (layers·Δx < R) are refused. Default: the fewest that cover it, `ceil(R/Δx)` (4
@@ -199,9 +202,9 @@ impl TankConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DomainConfig {
-    /// Lower corner [m].
+    /// Lower corner \[m\].
     pub lo: Vec<f64>,
-    /// Upper corner [m].
+    /// Upper corner \[m\].
     pub hi: Vec<f64>,
     /// Periodic flag per axis; a periodic axis needs the tanks' faces across it open.
     /// Default: none periodic.
@@ -262,236 +265,12 @@ pub enum InitialField {
     },
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum DiffusionChoice {
-    /// No density diffusion (standard WCSPH).
-    None,
-    /// Molteni & Colagrossi (2009).
-    MolteniColagrossi,
-    /// Ferrari et al. (2009).
-    Ferrari,
-    /// δ-SPH (Antuono et al. 2010), with the renormalised density gradient.
-    DeltaSph,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum ViscosityChoice {
-    /// No viscous term.
-    None,
-    /// Monaghan's artificial viscosity `K = α h c0 ρ0`, with `alpha`.
-    Artificial,
-    /// Physical viscosity, with `dynamic_viscosity`.
-    Physical,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum IntegratorChoice {
-    /// Runge-Kutta 4 with the diffusive term frozen over the step.
-    Rk4,
-    /// Second-order symplectic predictor-corrector.
-    Symplectic,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum WallCondition {
-    /// The walls exert no shear.
-    FreeSlip,
-    /// The viscous term sees the walls' velocity mirrored (Adami et al. 2012).
-    NoSlip,
-}
-
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct SchemeConfig {
-    /// The density diffusion of the continuity equation.
-    #[serde(default = "default_diffusion")]
-    pub diffusion: DiffusionChoice,
-    /// δ of the diffusive term.
-    #[serde(default = "default_delta")]
-    pub delta: f64,
-    /// The viscous term.
-    #[serde(default = "default_viscosity")]
-    pub viscosity: ViscosityChoice,
-    /// α of the artificial viscosity `K = α h c0 ρ0`. Default: 0.02.
-    #[serde(default)]
-    pub alpha: Option<f64>,
-    /// Dynamic viscosity μ [Pa s] of the physical viscosity. Default: required with
-    /// `physical`.
-    #[serde(default)]
-    pub dynamic_viscosity: Option<f64>,
-    /// The time integrator.
-    #[serde(default = "default_integrator")]
-    pub integrator: IntegratorChoice,
-    /// Courant number of `Δt = CFL h/c0`. Default: 1.5 (rk4) or 0.25 (symplectic).
-    #[serde(default)]
-    pub cfl: Option<f64>,
-    /// Viscous limit `Δt <= C_ν h²/ν`. Default: 0.125 (rk4) or 0.09 (symplectic).
-    #[serde(default)]
-    pub viscous_cfl: Option<f64>,
-    /// Density-diffusion limit `Δt <= C_ψ h²/max ν_δ` of `delta_les`. Default: 0.25
-    /// (rk4) or 0.18 (symplectic), 80% of the stability bound of the worst kernel
-    /// (Wendland C4 at h = 2Δx, whose diffusion eigenvalue reaches 8.9 ν_δ/h²).
-    #[serde(default)]
-    pub diffusion_cfl: Option<f64>,
-    /// Body-force limit `Δt <= C_f sqrt(h/|a|max)`.
-    #[serde(default = "default_force_cfl")]
-    pub force_cfl: f64,
-    /// The wall condition of the viscous term.
-    #[serde(default = "default_walls")]
-    pub walls: WallCondition,
-    /// Particle shifting after each step; `delta_plus` writes `shifting_velocity`.
-    #[serde(default = "default_shifting")]
-    pub shifting: ShiftingChoice,
-    /// Tensile instability control (Sun et al. 2018): `(p_j - p_i)` in the momentum
-    /// equation for interior particles with negative pressure (momentum is then not
-    /// conserved exactly).
-    #[serde(default)]
-    pub tensile_control: bool,
-    /// Turbulence closure: `delta_les` turns viscosity and density diffusion into LES
-    /// closures and moves particles quasi-Lagrangianly (δ-LES-SPH, docs/theory.md §11).
-    #[serde(default = "default_turbulence")]
-    pub turbulence: TurbulenceChoice,
-    /// C_S of the eddy viscosity `ν_T = (C_S l)² ‖D‖` (`delta_les`). Default: 0.12.
-    #[serde(default)]
-    pub smagorinsky_constant: Option<f64>,
-    /// C_δ of the density-diffusion coefficient `ν_δ = (C_δ l)² ‖D‖` (`delta_les`).
-    /// Default: 6.
-    #[serde(default)]
-    pub diffusion_constant: Option<f64>,
-    /// The LES length l [m] (`delta_les`). Default: the particle spacing Δx.
-    #[serde(default)]
-    pub les_length: Option<f64>,
-    /// U_max [m/s], the flow speed that sizes the quasi-Lagrangian shifting
-    /// `A_sh = a h U_max` and caps `|δu| <= U_max/2` (`delta_les`). Default: c0/10.
-    #[serde(default)]
-    pub les_velocity: Option<f64>,
-    /// The factor a of the shifting prefactor `A_sh = a h U_max` (`delta_les`; 0 leaves
-    /// the particles on the flow). Default: 8, from the Taylor-Green decay
-    /// (docs/validation/les.md).
-    #[serde(default)]
-    pub les_shifting: Option<f64>,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum TurbulenceChoice {
-    /// No closure: the viscosity and diffusion chosen above.
-    None,
-    /// δ-LES-SPH (Di Mascio et al. 2017; Antuono et al. 2021).
-    DeltaLes,
-}
-
-fn default_turbulence() -> TurbulenceChoice {
-    TurbulenceChoice::None
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum ShiftingChoice {
-    /// No shifting.
-    None,
-    /// δ+-SPH shifting (Sun et al. 2017), tangential near the free surface and capped
-    /// at 0.05h.
-    DeltaPlus,
-}
-
-fn default_shifting() -> ShiftingChoice {
-    ShiftingChoice::None
-}
-
-impl Default for SchemeConfig {
-    fn default() -> Self {
-        Self {
-            diffusion: default_diffusion(),
-            delta: default_delta(),
-            viscosity: default_viscosity(),
-            alpha: None,
-            dynamic_viscosity: None,
-            integrator: default_integrator(),
-            cfl: None,
-            viscous_cfl: None,
-            diffusion_cfl: None,
-            force_cfl: default_force_cfl(),
-            walls: default_walls(),
-            shifting: default_shifting(),
-            tensile_control: false,
-            turbulence: default_turbulence(),
-            smagorinsky_constant: None,
-            diffusion_constant: None,
-            les_length: None,
-            les_velocity: None,
-            les_shifting: None,
-        }
-    }
-}
-
-fn default_diffusion() -> DiffusionChoice {
-    DiffusionChoice::DeltaSph
-}
-fn default_delta() -> f64 {
-    0.1
-}
-fn default_viscosity() -> ViscosityChoice {
-    ViscosityChoice::Artificial
-}
-fn default_integrator() -> IntegratorChoice {
-    IntegratorChoice::Rk4
-}
-fn default_force_cfl() -> f64 {
-    0.25
-}
-fn default_walls() -> WallCondition {
-    WallCondition::FreeSlip
-}
-
-impl SchemeConfig {
-    /// The Courant number in force. RK4: 1.5, the largest with which the 2D dam break
-    /// (the most violent example) stays stable to t·sqrt(g/H) = 7 at H/Δx = 15-50. The
-    /// symplectic scheme: 0.25. It holds with 0.25, 0.3 and 0.4 at H/Δx = 15, 20 and 30
-    /// and with 0.25 and 0.3 at 50, where 0.4 reaches the end through a 10% density
-    /// spike and 0.6 stops unstable at t = 0.69 s (its walls stopped pulling lone
-    /// particles into them, which had once limited it to 0.15).
-    pub fn cfl(&self) -> f64 {
-        self.cfl.unwrap_or(match self.integrator {
-            IntegratorChoice::Rk4 => 1.5,
-            IntegratorChoice::Symplectic => 0.25,
-        })
-    }
-    /// The viscous number `C_ν` in force. RK4 is stable on the negative real axis up to
-    /// 2.785, the symplectic midpoint scheme up to 2, so its default is 0.125 · 2/2.785
-    /// (0.125 is stable and 0.09 is needed in the 2D Poiseuille case).
-    pub fn viscous_cfl(&self) -> f64 {
-        self.viscous_cfl.unwrap_or(match self.integrator {
-            IntegratorChoice::Rk4 => 0.125,
-            IntegratorChoice::Symplectic => 0.09,
-        })
-    }
-    /// The density-diffusion number `C_ψ` in force (δ-LES-SPH's `ν_δ` limit): 0.25 for
-    /// RK4, 0.18 for the symplectic scheme, below 0.85 of the stability intervals
-    /// (2.785 and 2) over the largest diffusion eigenvalue of every kernel (tested in
-    /// `time::step_size`).
-    pub fn diffusion_cfl(&self) -> f64 {
-        self.diffusion_cfl.unwrap_or(match self.integrator {
-            IntegratorChoice::Rk4 => 0.25,
-            IntegratorChoice::Symplectic => 0.18,
-        })
-    }
-    /// α of the artificial viscosity (default 0.02).
-    pub fn alpha(&self) -> f64 {
-        self.alpha.unwrap_or(0.02)
-    }
-}
-
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TimeConfig {
-    /// End time [s].
+    /// End time \[s\].
     pub end: f64,
-    /// Interval between particle snapshots [s]; 0 writes only the first and last.
+    /// Interval between particle snapshots \[s\]; 0 writes only the first and last.
     #[serde(default)]
     pub output_interval: f64,
     /// Cap on the number of steps. Default: none.
@@ -529,99 +308,6 @@ fn default_max_density_variation() -> f64 {
     0.2
 }
 
-#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct DiagnosticsConfig {
-    /// Interval of the time series (energies, probes, front) [s]. Default:
-    /// output_interval/10, or a 200th of the run without snapshots.
-    #[serde(default)]
-    pub interval: Option<f64>,
-    /// Write the kinetic, potential and compressive energies E_k, E_p, E_c, their sum
-    /// and max |Δρ/ρ0|.
-    #[serde(default)]
-    pub energy: bool,
-    /// Also integrate the viscous, diffusive and wall powers (docs/theory.md §10), computed in
-    /// the first evaluation of each step.
-    #[serde(default)]
-    pub energy_budget: bool,
-    /// Points of Shepard-interpolated pressure, inside the domain and not buried in a
-    /// wall: columns `probe<k>_pressure`, NaN while no fluid is within the kernel support
-    /// of the point.
-    #[serde(default)]
-    pub probes: Vec<Vec<f64>>,
-    /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
-    #[serde(default)]
-    pub surge_front_axis: Option<usize>,
-    /// Detect the free surface (Marrone et al. 2010) at each snapshot and write the
-    /// flag, the normal and λ with it.
-    #[serde(default)]
-    pub free_surface: bool,
-    /// Write each body's load (every tank, wall and wall shape): columns
-    /// `<name>_pressure_fx …`, `<name>_viscous_fx …`, `<name>_moment_z` (3D: `_moment_x
-    /// _y _z`) about `moment_point`. They are minus the wall terms of the fluid's momentum
-    /// equation, so the loads sum to Σ m_i (g - du_i/dt) to round-off.
-    #[serde(default)]
-    pub loads: bool,
-    /// The point moments are taken about. Default: the origin.
-    #[serde(default)]
-    pub moment_point: Option<Vec<f64>>,
-    /// Reference scales of the force coefficients: with `loads`, each body's total
-    /// force also as `<name>_cx …` = `F / (½ ρ U² A)`, `A = L` per unit width in 2D, `L²`
-    /// in 3D.
-    #[serde(default)]
-    pub reference: Option<ReferenceConfig>,
-    /// Pressure sensors as built: faces on a wall, averaged over their area and
-    /// optionally low-pass filtered.
-    #[serde(default)]
-    pub sensors: Vec<SensorConfig>,
-}
-
-/// The scales of the force coefficients.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct ReferenceConfig {
-    /// U [m/s].
-    pub velocity: f64,
-    /// L [m].
-    pub length: f64,
-    /// ρ [kg/m³]. Default: the fluid's ρ0.
-    #[serde(default)]
-    pub density: Option<f64>,
-}
-
-/// A face sensor (a segment in 2D, a disc or rectangle in 3D): columns
-/// `<name>_pressure` (the face average), `<name>_point` (the point value at its centre)
-/// and, with a cut-off, `<name>_filtered`.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct SensorConfig {
-    /// Heads the sensor's columns: `<name>_pressure` (the probe pressure averaged over
-    /// the face, on points at most Δx/4 apart, 5-64 across; where the face is dry it
-    /// reads zero gauge pressure, as a transducer in air does) and `<name>_point` (the
-    /// value at its centre).
-    pub name: String,
-    /// Centre of the face, on the wall [m].
-    pub centre: Vec<f64>,
-    /// Normal of the face (either sense).
-    pub normal: Vec<f64>,
-    /// Size of the face [m]: the length of the segment (2D), the diameter of the disc
-    /// (3D), or the rectangle's side along `along` (3D, with `width`).
-    pub size: f64,
-    /// 3D: makes the face a rectangle, `size` long along `along` and `width` [m] across
-    /// it. Default: a disc.
-    #[serde(default)]
-    pub width: Option<f64>,
-    /// 3D rectangles: the direction of their `size` side (projected into the face's
-    /// plane). Default: required with `width`.
-    #[serde(default)]
-    pub along: Option<Vec<f64>>,
-    /// Cut-off frequency [Hz] of a second-order Butterworth low-pass filter on the face
-    /// average, run at the series interval (below its Nyquist frequency): column
-    /// `<name>_filtered`; its state is kept in restart files. Default: none.
-    #[serde(default)]
-    pub cutoff: Option<f64>,
-}
-
 /// A body force per unit mass [m/s²] on the fluid, added to gravity: one expression per
 /// component, of the position (`x`, `y`, and `z` in 3D), the time `t`, `rho0` and the
 /// named `constants` (exmex syntax, as in `[initial]`; `PI` is π). For example the
@@ -644,7 +330,7 @@ pub struct ForcingConfig {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputConfig {
-    /// Simulated-time interval between restart files [s]. Default: none (a restart file
+    /// Simulated-time interval between restart files \[s\]. Default: none (a restart file
     /// is still written at the end, on a stop signal and on a failed write).
     #[serde(default)]
     pub restart_interval: Option<f64>,
@@ -757,4 +443,19 @@ pub fn face_axis(face: &str, dim: usize) -> Option<(usize, i8)> {
         _ => return None,
     };
     (ch.next().is_none() && axis < dim).then_some((axis, sign))
+}
+
+impl ShapeConfig {
+    /// Wall layers of this shape: as given, or [`Case::min_wall_layers`].
+    pub fn layer_count(&self, case: &Case) -> usize {
+        self.layers.unwrap_or_else(|| case.min_wall_layers())
+    }
+}
+
+impl OpenBoundaryConfig {
+    /// The buffer width in force: as given, or R rounded up to whole spacings plus one.
+    pub fn width_in(&self, case: &Case) -> f64 {
+        self.width
+            .unwrap_or_else(|| ((case.support() / case.dx() - 1e-9).ceil() + 1.0) * case.dx())
+    }
 }

@@ -3,9 +3,6 @@
 //! lattice, a wall of dummy particles, or a hole cut out of the fluid. Its geometry is
 //! built and checked in [`crate::geometry::solid`].
 
-use super::schema::Case;
-use super::validate::{check_box, components, finite, positive};
-use crate::error::{Result, SphError};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -40,9 +37,9 @@ pub enum FileKind {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BallConfig {
-    /// Centre [m].
+    /// Centre \[m\].
     pub centre: Vec<f64>,
-    /// Radius [m].
+    /// Radius \[m\].
     pub radius: f64,
 }
 
@@ -50,11 +47,11 @@ pub struct BallConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CylinderConfig {
-    /// Centre of one end face [m].
+    /// Centre of one end face \[m\].
     pub base: Vec<f64>,
-    /// Centre of the other end face [m].
+    /// Centre of the other end face \[m\].
     pub top: Vec<f64>,
-    /// Radius [m].
+    /// Radius \[m\].
     pub radius: f64,
 }
 
@@ -62,9 +59,9 @@ pub struct CylinderConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CuboidConfig {
-    /// Lower corner [m].
+    /// Lower corner \[m\].
     pub lo: Vec<f64>,
-    /// Upper corner [m].
+    /// Upper corner \[m\].
     pub hi: Vec<f64>,
 }
 
@@ -165,131 +162,5 @@ impl ShapeConfig {
     /// The scale factor in force (1 unless set).
     pub fn scale(&self) -> f64 {
         self.scale.unwrap_or(1.0)
-    }
-}
-
-impl Case {
-    /// The checks of one `[[shape]]` that need no file: one geometry of the case's
-    /// dimension, positive sizes, and only the keys of its role.
-    pub(super) fn check_shape(&self, k: usize, s: &ShapeConfig) -> Result<()> {
-        let key = format!("shape[{k}]");
-        let d = self.dimension;
-        let geometry = s.geometry_keys();
-        if geometry.len() != 1 {
-            return Err(SphError::invalid(
-                &key,
-                format!("{geometry:?}"),
-                "exactly one of polygon, file, circle, sphere, cylinder, box",
-            ));
-        }
-        let only = |what: &str, dim: usize| -> Result<()> {
-            if d == dim {
-                return Ok(());
-            }
-            Err(SphError::invalid(
-                format!("{key}.{what}"),
-                "(set)",
-                format!("a shape of a {d}D case ({what} is {dim}D only)"),
-            ))
-        };
-        if let Some(vertices) = &s.polygon {
-            only("polygon", 2)?;
-            for (i, v) in vertices.iter().enumerate() {
-                components(&format!("{key}.polygon[{i}]"), v, 2)?;
-            }
-        }
-        if let Some(c) = &s.circle {
-            only("circle", 2)?;
-            components(&format!("{key}.circle.centre"), &c.centre, 2)?;
-            positive(&format!("{key}.circle.radius"), c.radius)?;
-        }
-        if let Some(b) = &s.sphere {
-            only("sphere", 3)?;
-            components(&format!("{key}.sphere.centre"), &b.centre, 3)?;
-            positive(&format!("{key}.sphere.radius"), b.radius)?;
-        }
-        if let Some(c) = &s.cylinder {
-            only("cylinder", 3)?;
-            components(&format!("{key}.cylinder.base"), &c.base, 3)?;
-            components(&format!("{key}.cylinder.top"), &c.top, 3)?;
-            positive(&format!("{key}.cylinder.radius"), c.radius)?;
-            if c.base == c.top {
-                return Err(SphError::invalid(
-                    format!("{key}.cylinder.top"),
-                    format!("{:?}", c.top),
-                    "a point other than base (the axis runs from base to top)",
-                ));
-            }
-        }
-        if let Some(b) = &s.cuboid {
-            check_box(&format!("{key}.box"), &b.lo, &b.hi, d)?;
-        }
-        if let Some(kind) = s.file_kind() {
-            only("file", if kind == FileKind::Stl { 3 } else { 2 })?;
-        }
-        let drawing = matches!(s.file_kind(), Some(FileKind::Svg | FileKind::Dxf));
-        if s.outline.is_some() && !drawing {
-            return Err(SphError::invalid(
-                format!("{key}.outline"),
-                "(set)",
-                "a file = \"*.svg\" or \"*.dxf\" beside it (outline picks an element or a \
-                 layer of a drawing)",
-            ));
-        }
-        positive(&format!("{key}.scale"), s.scale())?;
-        self.check_role_keys(&key, s)
-    }
-
-    /// Walls take a name and layers, fluid a velocity and a hydrostatic start, cuts
-    /// neither.
-    fn check_role_keys(&self, key: &str, s: &ShapeConfig) -> Result<()> {
-        let wall_keys = [("name", s.name.is_some()), ("layers", s.layers.is_some())];
-        let fluid_keys = [
-            ("velocity", s.velocity.is_some()),
-            ("hydrostatic", s.hydrostatic.is_some()),
-            ("surface", s.surface.is_some()),
-        ];
-        let (wall_ok, fluid_ok) = (s.role == Role::Wall, s.role == Role::Fluid);
-        let misplaced = wall_keys
-            .iter()
-            .filter(|_| !wall_ok)
-            .chain(fluid_keys.iter().filter(|_| !fluid_ok))
-            .find(|(_, set)| *set);
-        if let Some((what, _)) = misplaced {
-            let role = format!("{:?}", s.role).to_lowercase();
-            return Err(SphError::invalid(
-                format!("{key}.{what}"),
-                "(set)",
-                format!(
-                    "no {what} for role = \"{role}\" (name and layers are for walls; velocity, \
-                     hydrostatic and surface for fluid)"
-                ),
-            ));
-        }
-        if let Some(v) = &s.velocity {
-            components(&format!("{key}.velocity"), v, self.dimension)?;
-        }
-        if let Some(h) = s.surface {
-            finite(&format!("{key}.surface"), h)?;
-        }
-        let need = self.min_wall_layers();
-        match s.layers {
-            Some(n) if n < need => Err(SphError::invalid(
-                format!("{key}.layers"),
-                n,
-                format!(
-                    "at least {need} layers: layers·Δx must cover the kernel support R = {:.4} m",
-                    self.support()
-                ),
-            )),
-            _ => Ok(()),
-        }
-    }
-}
-
-impl ShapeConfig {
-    /// Wall layers of this shape: as given, or [`Case::min_wall_layers`].
-    pub fn layer_count(&self, case: &Case) -> usize {
-        self.layers.unwrap_or_else(|| case.min_wall_layers())
     }
 }

@@ -36,7 +36,7 @@ pub struct SizeEstimate {
     pub particles: f64,
     /// Neighbours a particle in the bulk holds in its lists at the flow's speed.
     pub listed: f64,
-    /// Peak resident memory [bytes] of one process running the whole case.
+    /// Peak resident memory \[bytes\] of one process running the whole case.
     pub bytes: f64,
 }
 

@@ -123,7 +123,7 @@ pub struct LowPass {
 }
 
 impl LowPass {
-    /// The filter of cut-off `cutoff` [Hz] for readings every `interval` [s] (below
+    /// The filter of cut-off `cutoff` \[Hz\] for readings every `interval` \[s\] (below
     /// the Nyquist frequency 1/2T, validated).
     pub fn new(cutoff: f64, interval: f64) -> Self {
         let k = (std::f64::consts::PI * cutoff * interval).tan();

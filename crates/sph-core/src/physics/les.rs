@@ -38,7 +38,7 @@ pub struct Constants {
     pub smagorinsky: f64,
     /// C_δ of the diffusion coefficient.
     pub diffusion: f64,
-    /// The LES length l [m].
+    /// The LES length l \[m\].
     pub length: f64,
     /// U_max [m/s] of the shifting and its cap.
     pub velocity: f64,

@@ -22,15 +22,17 @@
 //! δ-SPH's momentum and continuity without diffusion.
 
 use crate::boundary::bodies::Load;
+use crate::boundary::open::OpenBoundaries;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
-use crate::physics::diffusion::{DeltaSph, DensityDiffusion, Pair};
+use crate::physics::diffusion::{DeltaSph, DensityDiffusion};
 use crate::physics::free_surface::{self, FreeSurface};
 use crate::physics::kernel::Kernel;
 use crate::physics::les::{self, harmonic_mean, Constants, Fields};
 use crate::physics::shifting::Shift;
 use crate::physics::viscosity::physical_k;
+use crate::scheme::kinematics::PairKinematics;
 use crate::scheme::model::{
     chained_passes, fluid_pressure, pressure_and_volume, tensile_pressure, Diffusivities, Model,
     Physics, Powers, Rates,
@@ -140,28 +142,18 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
         };
         for &j in list.fluid(i) {
             let j = j as usize;
-            let x_ij = domain.separation(&xi, &p.x[j]);
-            let r2 = x_ij.norm_squared();
-            let r = r2.sqrt();
-            let f = self.kernel.dw_over_r(r);
-            let grad_w = x_ij * (f * vol[j]);
+            let pair = PairKinematics::of(&self.kernel, domain, &xi, &p.x[j], vol[j]);
+            let (x_ij, r2, grad_w) = (pair.x_ij, pair.r2, pair.grad_w);
             let (uj, shift_j) = (p.u[j], fields.shift[j]);
             s.divergence += (uj + shift_j - hat_i).dot(&grad_w);
             s.shift_flux += (shift_j * p.rho[j] + shift_i * rho_i).dot(&grad_w);
             let inv_r2_reg = 1.0 / (r2 + self.eta2);
-            let pair = Pair {
-                x_ij: &x_ij,
-                r,
-                r2,
-                inv_r2_reg,
-                f,
-            };
             let psi = DeltaSph { delta: 1.0 }.psi_dot_grad(
                 rho_i,
                 p.rho[j],
                 &grad_i,
                 &fields.grad_rho[j],
-                &pair,
+                &pair.diffusion_pair(inv_r2_reg),
             );
             s.diffusion += harmonic_mean(nu_d_i, fields.nu_delta[j]) * psi * vol[j];
             s.pressure += grad_w * (p.p[j] + pi_pair);
@@ -316,6 +308,17 @@ impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
         self.kernel.w(r)
     }
 
+    fn prepare_open(
+        &self,
+        open: &OpenBoundaries<D>,
+        particles: &mut Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        t: f64,
+    ) {
+        open.prepare(particles, list, domain, &self.kernel, t);
+    }
+
     fn support_radius(&self) -> f64 {
         self.kernel.radius()
     }
@@ -344,7 +347,7 @@ mod tests {
     use crate::physics::eos::LinearEos;
     use crate::physics::les::tests::{constants, periodic_square};
     use crate::physics::viscosity::Viscous;
-    use crate::scheme::model::Scheme;
+    use crate::scheme::delta_sph::Scheme;
     use std::f64::consts::PI;
 
     fn physics() -> Physics<2> {

@@ -13,8 +13,9 @@ use crate::physics::kernel::{
 };
 use crate::physics::les;
 use crate::physics::viscosity::{artificial_k, physical_k, Inviscid, Viscosity, Viscous};
+use crate::scheme::delta_sph::Scheme;
 use crate::scheme::les::LesScheme;
-use crate::scheme::model::{Model, Physics, Scheme};
+use crate::scheme::model::{Model, Physics};
 
 /// Whether a case finds the free surface at each step: δ+-SPH shifting or tensile
 /// control.

@@ -19,11 +19,11 @@ pub const LONG_RUN: f64 = 86_400.0;
 pub struct Cost {
     /// Sound speed c0 [m/s].
     pub c0: f64,
-    /// The first step [s]: the acoustic, viscous and gravity limits at the start.
+    /// The first step \[s\]: the acoustic, viscous and gravity limits at the start.
     pub dt: f64,
     /// Steps from the start to the end time at that step.
     pub steps: f64,
-    /// Wall time [s] on `cores` cores, from the measured pair rate.
+    /// Wall time \[s\] on `cores` cores, from the measured pair rate.
     pub seconds: f64,
     pub cores: usize,
 }

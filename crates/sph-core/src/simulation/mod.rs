@@ -158,12 +158,12 @@ impl<const D: usize> Simulation<D> {
         &self.stepper.domain
     }
 
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub fn time(&self) -> f64 {
         self.state.time
     }
 
-    /// The last step [s] (0 before the first).
+    /// The last step \[s\] (0 before the first).
     pub fn dt(&self) -> f64 {
         self.state.dt
     }
@@ -294,7 +294,7 @@ impl<const D: usize> Simulation<D> {
         removed[0] as u64
     }
 
-    /// The mass [kg] of the fluid removed so far because it left the domain (per unit
+    /// The mass \[kg\] of the fluid removed so far because it left the domain (per unit
     /// depth in 2D; over all processes of a split run, collective there).
     pub fn removed_mass(&self) -> f64 {
         let mut mass = [self.state.counters.removed_mass];

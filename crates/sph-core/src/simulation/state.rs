@@ -11,7 +11,7 @@ pub struct Counters {
     pub rebuilds: u64,
     /// Fluid particles removed because they left the domain.
     pub removed: u64,
-    /// Their mass [kg] (per unit depth in 2D).
+    /// Their mass \[kg\] (per unit depth in 2D).
     pub removed_mass: f64,
     /// Fluid particles created at inlets.
     pub created: u64,
@@ -22,9 +22,9 @@ pub struct Counters {
 pub struct State<const D: usize> {
     /// In their current storage order (`id` names each one).
     pub particles: Particles<D>,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub time: f64,
-    /// The last step [s] (0 before the first).
+    /// The last step \[s\] (0 before the first).
     pub dt: f64,
     pub counters: Counters,
 }

@@ -59,7 +59,8 @@ impl<const D: usize> Context<'_, D> {
             halo.refresh(p);
         }
         if let Some(open) = self.open {
-            open.prepare(p, self.list, self.domain, &*self.model, self.time);
+            self.model
+                .prepare_open(open, p, self.list, self.domain, self.time);
         }
         self.model
             .evaluate(p, self.list, self.domain, rates, with_diffusion);
@@ -67,7 +68,7 @@ impl<const D: usize> Context<'_, D> {
             forcing.add(p, self.time + elapsed, &mut rates.du);
         }
         if let Some(open) = self.open {
-            open.hold(p, rates);
+            open.hold(p, &mut rates.du, &mut rates.drho, &mut rates.drho_diff);
         }
     }
 }

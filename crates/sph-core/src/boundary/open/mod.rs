@@ -36,7 +36,7 @@ use crate::error::Result;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
-use crate::scheme::model::{Model, Rates};
+use crate::physics::kernel::Kernel;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -214,19 +214,20 @@ impl<const D: usize> OpenBoundaries<D> {
 
     /// Sets the buffer particles' state before an evaluation at time `t`: inflow
     /// velocity and extrapolated density at inlets, prescribed density at outlets.
-    pub fn prepare(
+    pub fn prepare<K: Kernel>(
         &self,
         p: &mut Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
-        model: &dyn Model<D>,
+        kernel: &K,
         t: f64,
     ) {
         let state: Vec<Option<(Option<Vector<D>>, f64)>> = (0..p.len())
             .into_par_iter()
             .map(|i| {
                 let buffer = self.buffer_of(p, i)?;
-                let mirrored = || self.extrapolate(p, list, domain, model, &buffer.mirror(&p.x[i]));
+                let mirrored =
+                    || self.extrapolate(p, list, domain, kernel, &buffer.mirror(&p.x[i]));
                 Some(match buffer.flow {
                     Flow::Outflow {
                         density,
@@ -257,15 +258,15 @@ impl<const D: usize> OpenBoundaries<D> {
 
     /// Shepard interpolation of the density and the velocity of the fluid outside the
     /// buffers at `x`.
-    fn extrapolate(
+    fn extrapolate<K: Kernel>(
         &self,
         p: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
-        model: &dyn Model<D>,
+        kernel: &K,
         x: &Vector<D>,
     ) -> Option<(f64, Vector<D>)> {
-        let radius = model.support_radius();
+        let radius = kernel.radius();
         let (mut num, mut den, mut velocity) = (0.0, 0.0, Vector::<D>::zeros());
         list.for_candidates(x, |j| {
             if p.kind[j] != Kind::Fluid || self.buffers.iter().any(|b| b.holds(&p.x[j])) {
@@ -273,7 +274,7 @@ impl<const D: usize> OpenBoundaries<D> {
             }
             let r = domain.separation(x, &p.x[j]).norm();
             if r < radius {
-                let wv = model.w(r) * p.mass[j] / p.rho[j];
+                let wv = kernel.w(r) * p.mass[j] / p.rho[j];
                 num += p.rho[j] * wv;
                 velocity += p.u[j] * wv;
                 den += wv;
@@ -282,14 +283,19 @@ impl<const D: usize> OpenBoundaries<D> {
         (den > 0.0).then(|| (num / den, velocity / den))
     }
 
-    /// Zeroes the rates of the buffer particles: their state is what [`Self::prepare`]
-    /// sets, and they move with their velocity.
-    pub fn hold(&self, p: &Particles<D>, rates: &mut Rates<D>) {
-        rates
-            .du
-            .par_iter_mut()
-            .zip(rates.drho.par_iter_mut())
-            .zip(rates.drho_diff.par_iter_mut())
+    /// Zeroes the rates of the buffer particles (acceleration, continuity and its
+    /// diffusive part): their state is what [`Self::prepare`] sets, and they move with
+    /// their velocity.
+    pub fn hold(
+        &self,
+        p: &Particles<D>,
+        du: &mut [Vector<D>],
+        drho: &mut [f64],
+        drho_diff: &mut [f64],
+    ) {
+        du.par_iter_mut()
+            .zip(drho.par_iter_mut())
+            .zip(drho_diff.par_iter_mut())
             .enumerate()
             .for_each(|(i, ((du, drho), diff))| {
                 if self.in_buffer(p, i) {

@@ -4,10 +4,12 @@
 //! new one, never a part of either. A failed write removes its partial file, which
 //! gives back the space it took (a full disk).
 
-use super::manifest::PARTIAL;
 use crate::error::{Result, SphError};
 use std::fs::{self, File};
 use std::path::{Path, PathBuf};
+
+/// The suffix of the temporary file a write goes to before it is renamed into place.
+pub const PARTIAL: &str = ".partial";
 
 /// The temporary sibling a write of `path` goes to.
 pub fn partial(path: &Path) -> PathBuf {

@@ -7,6 +7,7 @@
 //! run killed at any moment leaves no file of its own unlisted. Only plain names (one
 //! path component) are ever removed, whatever a hand-edited manifest says.
 
+use super::atomic::PARTIAL;
 use crate::error::{Result, SphError};
 use std::collections::BTreeSet;
 use std::fs::{self, File, OpenOptions};
@@ -18,9 +19,6 @@ pub const MANIFEST: &str = ".deltasph-run";
 
 const HEADER: &str = "# deltasph run folder: the files listed below were written by deltasph; \
                       `sph-cli run --force` removes these and nothing else";
-
-/// The suffix of the temporary file a write goes to before it is renamed into place.
-pub const PARTIAL: &str = ".partial";
 
 /// The files deltasph wrote in one folder.
 #[derive(Debug)]

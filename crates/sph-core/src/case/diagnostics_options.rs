@@ -1,0 +1,98 @@
+//! The `[diagnostics]` table: what the time series records (energies and their budget,
+//! probes, sensors, loads, the surge front) and the free surface in snapshots.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DiagnosticsConfig {
+    /// Interval of the time series (energies, probes, front) \[s\]. Default:
+    /// output_interval/10, or a 200th of the run without snapshots.
+    #[serde(default)]
+    pub interval: Option<f64>,
+    /// Write the kinetic, potential and compressive energies E_k, E_p, E_c, their sum
+    /// and max |Δρ/ρ0|.
+    #[serde(default)]
+    pub energy: bool,
+    /// Also integrate the viscous, diffusive and wall powers (docs/theory.md §10), computed in
+    /// the first evaluation of each step.
+    #[serde(default)]
+    pub energy_budget: bool,
+    /// Points of Shepard-interpolated pressure, inside the domain and not buried in a
+    /// wall: columns `probe<k>_pressure`, NaN while no fluid is within the kernel support
+    /// of the point.
+    #[serde(default)]
+    pub probes: Vec<Vec<f64>>,
+    /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
+    #[serde(default)]
+    pub surge_front_axis: Option<usize>,
+    /// Detect the free surface (Marrone et al. 2010) at each snapshot and write the
+    /// flag, the normal and λ with it.
+    #[serde(default)]
+    pub free_surface: bool,
+    /// Write each body's load (every tank, wall and wall shape): columns
+    /// `<name>_pressure_fx …`, `<name>_viscous_fx …`, `<name>_moment_z` (3D: `_moment_x
+    /// _y _z`) about `moment_point`. They are minus the wall terms of the fluid's momentum
+    /// equation, so the loads sum to Σ m_i (g - du_i/dt) to round-off.
+    #[serde(default)]
+    pub loads: bool,
+    /// The point moments are taken about. Default: the origin.
+    #[serde(default)]
+    pub moment_point: Option<Vec<f64>>,
+    /// Reference scales of the force coefficients: with `loads`, each body's total
+    /// force also as `<name>_cx …` = `F / (½ ρ U² A)`, `A = L` per unit width in 2D, `L²`
+    /// in 3D.
+    #[serde(default)]
+    pub reference: Option<ReferenceConfig>,
+    /// Pressure sensors as built: faces on a wall, averaged over their area and
+    /// optionally low-pass filtered.
+    #[serde(default)]
+    pub sensors: Vec<SensorConfig>,
+}
+
+/// The scales of the force coefficients.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceConfig {
+    /// U [m/s].
+    pub velocity: f64,
+    /// L \[m\].
+    pub length: f64,
+    /// ρ [kg/m³]. Default: the fluid's ρ0.
+    #[serde(default)]
+    pub density: Option<f64>,
+}
+
+/// A face sensor (a segment in 2D, a disc or rectangle in 3D): columns
+/// `<name>_pressure` (the face average), `<name>_point` (the point value at its centre)
+/// and, with a cut-off, `<name>_filtered`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SensorConfig {
+    /// Heads the sensor's columns: `<name>_pressure` (the probe pressure averaged over
+    /// the face, on points at most Δx/4 apart, 5-64 across; where the face is dry it
+    /// reads zero gauge pressure, as a transducer in air does) and `<name>_point` (the
+    /// value at its centre).
+    pub name: String,
+    /// Centre of the face, on the wall \[m\].
+    pub centre: Vec<f64>,
+    /// Normal of the face (either sense).
+    pub normal: Vec<f64>,
+    /// Size of the face \[m\]: the length of the segment (2D), the diameter of the disc
+    /// (3D), or the rectangle's side along `along` (3D, with `width`).
+    pub size: f64,
+    /// 3D: makes the face a rectangle, `size` long along `along` and `width` \[m\] across
+    /// it. Default: a disc.
+    #[serde(default)]
+    pub width: Option<f64>,
+    /// 3D rectangles: the direction of their `size` side (projected into the face's
+    /// plane). Default: required with `width`.
+    #[serde(default)]
+    pub along: Option<Vec<f64>>,
+    /// Cut-off frequency \[Hz\] of a second-order Butterworth low-pass filter on the face
+    /// average, run at the series interval (below its Nyquist frequency): column
+    /// `<name>_filtered`; its state is kept in restart files. Default: none.
+    #[serde(default)]
+    pub cutoff: Option<f64>,
+}

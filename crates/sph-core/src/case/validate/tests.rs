@@ -1,0 +1,214 @@
+use crate::case::tests::{error_of, MINIMAL};
+use crate::case::Case;
+
+/// A 3D rectangle sensor on the tank's +x face, with `extra` keys.
+fn sensor_3d(extra: &str) -> String {
+    MINIMAL
+        .replace("dimension = 2", "dimension = 3")
+        .replace("[0.0, -9.81]", "[0.0, 0.0, -9.81]")
+        .replace("lo = [0.0, 0.0]", "lo = [0.0, 0.0, 0.0]")
+        .replace("hi = [0.2, 0.1]", "hi = [0.2, 0.1, 0.1]")
+        .replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3, 0.3]")
+        + "[[diagnostics.sensors]]\nname = \"s\"\ncentre = [0.5, 0.1, 0.05]\n\
+           normal = [-1.0, 0.0, 0.0]\nsize = 0.02\n"
+        + extra
+}
+
+#[test]
+fn rectangle_sensors_need_a_width_and_a_direction_in_their_plane() {
+    assert!(Case::from_toml_str(&sensor_3d("width = 0.01\nalong = [0.0, 0.0, 1.0]\n")).is_ok());
+    let e = error_of(&sensor_3d("width = 0.01\n"));
+    assert!(
+        e.starts_with("diagnostics.sensors[0].width = 0.01: expected `along` with it"),
+        "{e}"
+    );
+    let e = error_of(&sensor_3d("along = [0.0, 1.0, 0.0]\n"));
+    assert!(
+        e.starts_with("diagnostics.sensors[0].along = [0.0, 1.0, 0.0]: expected `width`"),
+        "{e}"
+    );
+    let e = error_of(&sensor_3d("width = 0.01\nalong = [2.0, 0.0, 0.0]\n"));
+    assert!(
+        e.starts_with("diagnostics.sensors[0].along = [2.0, 0.0, 0.0]: expected a direction in the face's plane"),
+        "{e}"
+    );
+    let e = error_of(&sensor_3d("width = -0.01\nalong = [0.0, 0.0, 1.0]\n"));
+    assert!(e.starts_with("diagnostics.sensors[0].width = -0.01"), "{e}");
+    let flat = MINIMAL.to_string()
+        + "[[diagnostics.sensors]]\nname = \"s\"\ncentre = [0.5, 0.1]\n\
+           normal = [-1.0, 0.0]\nsize = 0.02\nwidth = 0.01\n";
+    let e = error_of(&flat);
+    assert!(
+        e.starts_with("diagnostics.sensors[0].width = 0.01: expected no width in 2D"),
+        "{e}"
+    );
+}
+
+#[test]
+fn absurd_spacing_is_refused_before_building() {
+    let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 1e-9"));
+    assert!(
+        e.starts_with("particles.spacing = 0.000000001: expected a spacing giving at most"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_periodic_axis_names_the_tank_faces_to_open() {
+    let periodic = MINIMAL.to_string()
+        + "[domain]\nlo = [-0.1, -0.1]\nhi = [0.6, 0.5]\nperiodic = [true, false]\n";
+    let e = error_of(&periodic);
+    assert_eq!(
+        e,
+        "tank[0].open = [\"+y\"] (the default): expected the faces along periodic axis x open \
+         (domain.periodic): add \"-x\" and \"+x\", e.g. open = [\"+y\", \"-x\", \"+x\"]"
+    );
+    let half = periodic.replace(
+        "hi = [0.5, 0.3]",
+        "hi = [0.5, 0.3]\nopen = [\"+y\", \"-x\"]",
+    );
+    let e = error_of(&half);
+    assert!(
+        e.contains("add \"+x\", e.g. open = [\"+y\", \"-x\", \"+x\"]"),
+        "{e}"
+    );
+    let open = half.replace("\"-x\"]", "\"-x\", \"+x\"]");
+    assert!(Case::from_toml_str(&open).is_ok());
+}
+
+#[test]
+fn negative_spacing_is_refused() {
+    let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = -0.01"));
+    assert_eq!(e, "particles.spacing = -0.01: expected a positive number");
+}
+
+#[test]
+fn body_names_are_plain_and_unique() {
+    let walls = |a: &str, b: &str| {
+        MINIMAL.to_string()
+            + &format!(
+                "[[wall]]\nname = \"{a}\"\nlo = [0.3, 0.0]\nhi = [0.4, 0.1]\n\
+                 [[wall]]\nname = \"{b}\"\nlo = [0.4, 0.0]\nhi = [0.5, 0.1]\n"
+            )
+    };
+    assert!(Case::from_toml_str(&walls("step", "baffle_2")).is_ok());
+    let e = error_of(&walls("step", "step"));
+    assert!(
+        e.starts_with(
+            "wall[1].name = \"step\": expected a name no other body has (wall[0].name has it)"
+        ),
+        "{e}"
+    );
+    let e = error_of(&walls("tank0", "b"));
+    assert!(
+        e.starts_with("wall[0].name = \"tank0\": expected a name no other"),
+        "{e}"
+    );
+    let e = error_of(&walls("a b", "c"));
+    assert!(
+        e.starts_with("wall[0].name = \"a b\": expected a letter"),
+        "{e}"
+    );
+    let named = MINIMAL.replace("hi = [0.2, 0.1]", "hi = [0.2, 0.1]\nname = \"water\"");
+    let e = error_of(&named);
+    assert!(
+        e.starts_with("fluid_block[0].name") && e.contains("unknown field"),
+        "fluid blocks carry no load, so no name: {e}"
+    );
+}
+
+#[test]
+fn h_over_dx_out_of_range() {
+    let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nh_over_dx = 7"));
+    assert!(e.starts_with("particles.h_over_dx = 7"), "{e}");
+}
+
+#[test]
+fn wrong_component_count() {
+    let e = error_of(&MINIMAL.replace("gravity = [0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]"));
+    assert!(
+        e.starts_with("fluid.gravity = [0.0, 0.0, -9.81]: expected 2 components"),
+        "{e}"
+    );
+}
+
+#[test]
+fn inverted_box() {
+    let e = error_of(&MINIMAL.replace("hi = [0.2, 0.1]", "hi = [0.2, -0.1]"));
+    assert!(e.starts_with("fluid_block[0].hi"), "{e}");
+}
+
+/// δ-LES-SPH is offered for periodic flows without walls: each other setting is
+/// refused in one line naming its key.
+#[test]
+fn les_is_refused_where_it_is_not_offered() {
+    let les = "[scheme]\nturbulence = \"delta_les\"\nviscosity = \"physical\"\n\
+               dynamic_viscosity = 0.001";
+    let e = error_of(&format!("{MINIMAL}\n{les}"));
+    assert!(e.starts_with("tank/wall/shape = walls"), "{e}");
+    let periodic = "[domain]\nlo = [0.0, 0.0]\nhi = [0.2, 0.1]\nperiodic = [true, true]";
+    let open = MINIMAL.replace(
+        "[[tank]]\n        lo = [0.0, 0.0]\n        hi = [0.5, 0.3]",
+        "",
+    );
+    let e = error_of(&format!("{open}\n{les}"));
+    assert!(e.starts_with("domain.periodic = None"), "{e}");
+    let e = error_of(&format!(
+        "{open}\n{les}\nshifting = \"delta_plus\"\n{periodic}"
+    ));
+    assert!(e.starts_with("scheme.shifting = \"delta_plus\""), "{e}");
+    let e = error_of(&format!(
+        "{open}\n{les}\nsmagorinsky_constant = -0.1\n{periodic}"
+    ));
+    assert!(e.starts_with("scheme.smagorinsky_constant = -0.1"), "{e}");
+    let artificial = "[scheme]\nturbulence = \"delta_les\"";
+    let e = error_of(&format!("{open}\n{artificial}\n{periodic}"));
+    assert!(e.starts_with("scheme.viscosity = \"artificial\""), "{e}");
+}
+
+#[test]
+fn physical_viscosity_needs_mu() {
+    let e = error_of(&format!("{MINIMAL}\n[scheme]\nviscosity = \"physical\""));
+    assert!(e.starts_with("scheme.dynamic_viscosity = (missing)"), "{e}");
+}
+
+#[test]
+fn bad_open_face() {
+    let e = error_of(&MINIMAL.replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3]\nopen = [\"+z\"]"));
+    assert!(e.starts_with("tank[0].open = \"+z\""), "{e}");
+}
+
+#[test]
+fn name_must_be_a_plain_file_name() {
+    for bad in ["../x", "/tmp/x", "a/b", "..", "", "a\\\\b"] {
+        let e = error_of(&format!("name = {bad:?}\n{MINIMAL}"));
+        assert!(
+            e.starts_with(&format!("name = {bad:?}: expected a plain file name")),
+            "{e}"
+        );
+    }
+    assert!(Case::from_toml_str(&format!("name = \"dam-break_2\"\n{MINIMAL}")).is_ok());
+}
+
+#[test]
+fn wall_layers_must_cover_the_support() {
+    // h/Δx = 2: R = 4Δx, three layers are too few; unset, the default is four
+    let text = MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nh_over_dx = 2.0");
+    let e = error_of(&text.replace("hi = [0.5, 0.3]", "hi = [0.5, 0.3]\nlayers = 3"));
+    assert!(
+        e.starts_with("tank[0].layers = 3: expected at least 4 layers"),
+        "{e}"
+    );
+    let case = Case::from_toml_str(&text).unwrap();
+    assert_eq!(case.tank[0].layer_count(&case), 4);
+}
+
+#[test]
+fn thin_wall_boxes_are_refused() {
+    let wall = "\n[[wall]]\nlo = [0.3, 0.0]\nhi = [0.32, 0.2]\n";
+    let e = error_of(&format!("{MINIMAL}{wall}"));
+    assert!(
+        e.starts_with("wall[0] = lo = [0.3, 0.0], hi = [0.32, 0.2]: expected a box at least"),
+        "{e}"
+    );
+}

@@ -169,6 +169,14 @@ def test_probe_pressure_matches_hydrostatics():
     assert np.isnan(sim.probe_pressure([[1.0, 1.8]])[0])
     with pytest.raises(ValueError, match="expected a point inside the domain"):
         sim.probe_pressure([[10.0, 10.0]])
+    # so is one deeper than the kernel support (2h = 0.1 m) inside the floor, 6 layers
+    # of 0.025 m thick: fluid can never reach it
+    case = example("hydrostatic_2d")
+    case["tank"][0]["layers"] = 6
+    sim = ds.Simulation(case)
+    assert np.isnan(sim.probe_pressure([[1.0, -0.09]])[0])
+    with pytest.raises(ValueError, match=r"points\[1\] .* kernel support inside tank\[0\]"):
+        sim.probe_pressure([[1.0, 0.5], [1.0, -0.12]])
 
 
 def test_set_velocities_and_density(coarse_dam_break):

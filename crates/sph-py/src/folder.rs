@@ -4,7 +4,7 @@
 
 use crate::errors::to_py;
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sph_core::io::output::reading::{read_snapshot as read, Field};
@@ -170,4 +170,26 @@ pub fn read_snapshot<'py>(
         }
     }
     Ok((snapshot.time, snapshot.step, fields))
+}
+
+/// The folder options of `run`, the checkpoint interval checked.
+pub(crate) fn folder_options(
+    out: PathBuf,
+    force: bool,
+    checkpoint_every: Option<f64>,
+) -> PyResult<FolderOptions> {
+    let checkpoint_every = match checkpoint_every {
+        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
+        Some(s) => {
+            return Err(PyValueError::new_err(format!(
+                "checkpoint_every = {s}: expected a wall-clock interval above 0 s"
+            )))
+        }
+        None => None,
+    };
+    Ok(FolderOptions {
+        out,
+        force,
+        checkpoint_every,
+    })
 }

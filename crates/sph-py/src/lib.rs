@@ -7,6 +7,7 @@ mod config;
 mod edits;
 mod errors;
 mod folder;
+mod measures;
 mod simulation;
 mod stepping;
 

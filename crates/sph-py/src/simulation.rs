@@ -5,7 +5,8 @@ use crate::arrays;
 use crate::config;
 use crate::edits::{set_density, set_velocities};
 use crate::errors::to_py;
-use crate::folder::{Folder, FolderOptions};
+use crate::folder::{folder_options, Folder, FolderOptions};
+use crate::measures;
 use crate::stepping::{advance, Target};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyTypeError, PyValueError};
@@ -14,7 +15,6 @@ use pyo3::types::PyDict;
 use sph_core::io::restart;
 use sph_core::{Case, Simulation};
 use std::path::PathBuf;
-use std::time::Duration;
 
 /// The `kind` of a row whose particle left the domain.
 const REMOVED: u8 = 255;
@@ -38,27 +38,6 @@ macro_rules! each {
             Solver::Three($s) => $body,
         }
     };
-}
-
-fn folder_options(
-    out: PathBuf,
-    force: bool,
-    checkpoint_every: Option<f64>,
-) -> PyResult<FolderOptions> {
-    let checkpoint_every = match checkpoint_every {
-        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
-        Some(s) => {
-            return Err(PyValueError::new_err(format!(
-                "checkpoint_every = {s}: expected a wall-clock interval above 0 s"
-            )))
-        }
-        None => None,
-    };
-    Ok(FolderOptions {
-        out,
-        force,
-        checkpoint_every,
-    })
 }
 
 /// A weakly-compressible δ-SPH simulation.
@@ -508,14 +487,7 @@ impl PySimulation {
     /// the walls, -∫(P_V + P_D + P_W) dt, so that ``total + dissipated`` stays
     /// constant; None unless the case sets ``diagnostics.energy_budget = true``.
     fn energies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (e, budget) = each!(&self.solver, s => (s.energies(), s.budget()));
-        let dict = PyDict::new(py);
-        dict.set_item("kinetic", e.kinetic)?;
-        dict.set_item("potential", e.potential)?;
-        dict.set_item("internal", e.internal)?;
-        dict.set_item("total", e.total())?;
-        dict.set_item("dissipated", budget.map(|b| 0.0 - b.work()))?;
-        Ok(dict)
+        each!(&self.solver, s => measures::energies(py, s))
     }
 
     /// The fluid's load on each body (every tank and wall, by name, in case order) at
@@ -523,17 +495,7 @@ impl PySimulation {
     /// in N (per unit width in 2D) and N m about ``diagnostics.moment_point``. The
     /// loads are minus the wall terms of the fluid's momentum equation.
     fn loads<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let dict = PyDict::new(py);
-        each!(&mut self.solver, s => {
-            let names: Vec<String> = s.bodies().iter().map(|b| b.name.clone()).collect();
-            for (name, load) in names.into_iter().zip(s.loads()) {
-                let entry = PyDict::new(py);
-                entry.set_item("pressure", PyArray1::from_slice(py, load.pressure.as_slice()))?;
-                entry.set_item("viscous", PyArray1::from_slice(py, load.viscous.as_slice()))?;
-                entry.set_item("moment", PyArray1::from_slice(py, load.moment.as_slice()))?;
-                dict.set_item(name, entry)?;
-            }
-        });
+        let dict = each!(&mut self.solver, s => measures::loads(py, s))?;
         self.pressure_fresh = true;
         Ok(dict)
     }
@@ -542,30 +504,15 @@ impl PySimulation {
     /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
     /// fluid within the kernel support reads NaN (no fluid there, which is not zero
     /// pressure; ``numpy.nan_to_num`` turns it into zero gauge pressure). A point
-    /// outside the domain, where no fluid can be, raises ValueError.
+    /// no fluid can ever reach (outside the domain, or deeper than the kernel support
+    /// inside a wall) raises ValueError.
     fn probe_pressure<'py>(
         &mut self,
         py: Python<'py>,
         points: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.fresh_pressure();
-        each!(&self.solver, s => {
-            let points = arrays::points(points)?;
-            let domain = s.domain();
-            if let Some((k, x)) = points.iter().enumerate().find(|(_, x)| domain.escaped(x)) {
-                return Err(PyValueError::new_err(format!(
-                    "points[{k}] = {:?}: expected a point inside the domain {} (outside it \
-                     no fluid can be)",
-                    x.as_slice(),
-                    domain.describe()
-                )));
-            }
-            let values: Vec<f64> = points
-                .iter()
-                .map(|x| s.probe_pressure(x).unwrap_or(f64::NAN))
-                .collect();
-            Ok(PyArray1::from_vec(py, values))
-        })
+        each!(&self.solver, s => measures::probe_pressure(py, s, points))
     }
 
     /// Free-surface detection (Marrone et al. 2010) at the current state, in id order:
@@ -573,15 +520,7 @@ impl PySimulation {
     /// for walls) and ``lambda`` (smallest eigenvalue of the renormalisation matrix,
     /// about 1 inside, 0.5 at the surface).
     fn free_surface<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let dict = PyDict::new(py);
-        each!(&self.solver, s => {
-            let f = s.free_surface();
-            let (id, n) = (&s.particles().id, rows(s));
-            dict.set_item("on_surface", arrays::scalars(py, id, n, &f.on_surface, (false, |b| b)))?;
-            dict.set_item("normal", arrays::vectors(py, id, n, &f.normal))?;
-            dict.set_item("lambda", arrays::scalars(py, id, n, &f.lambda, (f64::NAN, |v| v)))?;
-        });
-        Ok(dict)
+        each!(&self.solver, s => measures::free_surface(py, s))
     }
 
     /// Sets the fluid velocities [m/s] from a float64 array (N, D) in id order (as

@@ -9,11 +9,11 @@ use rayon::prelude::*;
 /// Fluid particles inside a wall: past the first layer of wall particles (more than
 /// Δx/2 beyond a closed face of a tank, within its layers and below the last wall
 /// particles at an open face, over which fluid may pass), or deeper than Δx/2 inside
-/// a `[[wall]]` box or a `[[shape]]` wall (`wall_solids`). Zero in a sound run;
+/// a `[[wall]]` box or a `[[shape]]` wall (`wall_solids`, with their index in `case.shape`). Zero in a sound run;
 /// dummy-particle walls do not forbid crossing, so this counts the failures.
 pub fn wall_crossings<const D: usize>(
     case: &Case,
-    wall_solids: &[Solid],
+    wall_solids: &[(usize, Solid)],
     p: &Particles<D>,
 ) -> usize {
     let dx = case.dx();
@@ -46,7 +46,7 @@ pub fn wall_crossings<const D: usize>(
             let x = &p.x[i];
             tanks.iter().any(|tank| in_tank_wall(x, tank))
                 || case.wall.iter().any(|w| inside(x, &w.lo, &w.hi, 0.5 * dx))
-                || (wall_solids.iter()).any(|s| s.signed_distance(x.as_slice()) < -0.5 * dx)
+                || (wall_solids.iter()).any(|(_, s)| s.signed_distance(x.as_slice()) < -0.5 * dx)
         })
         .count()
 }

@@ -40,20 +40,19 @@ impl Energies {
 
 /// E_k, E_p and E_c of the fluid.
 pub fn energies<const D: usize>(p: &Particles<D>, eos: &LinearEos, g: &Vector<D>) -> Energies {
-    let fluid: Vec<bool> = p.kind.iter().map(|&k| k == Kind::Fluid).collect();
-    energies_of(p, &fluid, eos, g)
+    energies_of(p, |i| p.kind[i] == Kind::Fluid, eos, g)
 }
 
-/// E_k, E_p and E_c of the particles flagged in `which`.
+/// E_k, E_p and E_c of the particles `i` for which `which(i)` holds.
 pub fn energies_of<const D: usize>(
     p: &Particles<D>,
-    which: &[bool],
+    which: impl Fn(usize) -> bool + Sync + Send,
     eos: &LinearEos,
     g: &Vector<D>,
 ) -> Energies {
     (0..p.len())
         .into_par_iter()
-        .filter(|&i| which[i])
+        .filter(|&i| which(i))
         .map(|i| {
             let m = p.mass[i];
             Energies {

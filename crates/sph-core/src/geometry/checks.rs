@@ -1,7 +1,7 @@
 //! Checks on the built particles: no fluid inside a wall or doubled by overlapping
 //! blocks, and probes where fluid can reach.
 
-use super::regions::Shapes;
+use super::solid::Solid;
 use super::vector;
 use crate::case::Case;
 use crate::domain::Domain;
@@ -85,24 +85,10 @@ fn overlap_error<const D: usize>(p: &Particles<D>, i: usize, j: usize, r: f64) -
 pub(super) fn check_probes<const D: usize>(
     case: &Case,
     domain: &Domain<D>,
-    shapes: &Shapes,
+    wall_solids: &[(usize, Solid)],
 ) -> Result<()> {
-    let support = case.support();
     for (k, probe) in case.diagnostics.probes.iter().enumerate() {
-        let x: Vector<D> = vector(probe);
-        let reason = if domain.escaped(&x) {
-            Some(format!(
-                "a point inside the domain lo = {:?}, hi = {:?} (domain.lo, domain.hi; without \
-                 [domain], the particles' bounding box widened by half its size)",
-                domain.lo.as_slice(),
-                domain.hi.as_slice()
-            ))
-        } else {
-            buried_in_wall(case, shapes, &x, support).map(|wall| {
-                format!("a point fluid can reach, not deeper than the kernel support inside {wall}")
-            })
-        };
-        if let Some(expected) = reason {
+        if let Some(expected) = probe_refusal(case, domain, wall_solids, &vector(probe)) {
             return Err(SphError::invalid(
                 format!("diagnostics.probes[{k}]"),
                 format!("{probe:?}"),
@@ -113,11 +99,34 @@ pub(super) fn check_probes<const D: usize>(
     Ok(())
 }
 
+/// Why no fluid can ever reach `x` (what a probe point was expected to be), or `None`
+/// where fluid can: outside the domain, or deeper than the kernel support inside a
+/// tank's closed face, a `[[wall]]` box or a `[[shape]]` wall (`wall_solids`, with their
+/// index in `case.shape`).
+pub fn probe_refusal<const D: usize>(
+    case: &Case,
+    domain: &Domain<D>,
+    wall_solids: &[(usize, Solid)],
+    x: &Vector<D>,
+) -> Option<String> {
+    if domain.escaped(x) {
+        return Some(format!(
+            "a point inside the domain lo = {:?}, hi = {:?} (domain.lo, domain.hi; without \
+             [domain], the particles' bounding box widened by half its size)",
+            domain.lo.as_slice(),
+            domain.hi.as_slice()
+        ));
+    }
+    buried_in_wall(case, wall_solids, x, case.support()).map(|wall| {
+        format!("a point fluid can reach, not deeper than the kernel support inside {wall}")
+    })
+}
+
 /// The wall (`tank[k]`, `wall[k]` or `shape[k]`) inside which `x` lies deeper than
 /// `depth`.
 fn buried_in_wall<const D: usize>(
     case: &Case,
-    shapes: &Shapes,
+    wall_solids: &[(usize, Solid)],
     x: &Vector<D>,
     depth: f64,
 ) -> Option<String> {
@@ -141,8 +150,7 @@ fn buried_in_wall<const D: usize>(
             return Some(format!("wall[{k}]"));
         }
     }
-    shapes
-        .walls
+    wall_solids
         .iter()
         .find(|(_, solid)| solid.signed_distance(x.as_slice()) < -depth)
         .map(|(k, _)| format!("shape[{k}]"))

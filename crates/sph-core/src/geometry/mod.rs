@@ -15,6 +15,7 @@ mod regions;
 mod report;
 pub mod solid;
 
+pub use checks::probe_refusal;
 pub use report::Region;
 
 use crate::boundary::bodies::Body;
@@ -36,8 +37,8 @@ pub struct Setup<const D: usize> {
     pub bodies: Vec<Body>,
     /// Every fluid region and wall, by the ids of its particles, in build order.
     pub regions: Vec<Region>,
-    /// The solids of the `[[shape]]` walls, in case order.
-    pub wall_solids: Vec<solid::Solid>,
+    /// The solids of the `[[shape]]` walls with their index in `case.shape`.
+    pub wall_solids: Vec<(usize, solid::Solid)>,
 }
 
 pub(super) fn vector<const D: usize>(v: &[f64]) -> Vector<D> {
@@ -142,7 +143,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
     checks::check_overlap(&particles, dx)?;
     initial_field::check(case, &particles)?;
     let domain = domain_of(case, &particles)?;
-    checks::check_probes(case, &domain, &shapes)?;
+    checks::check_probes(case, &domain, &shapes.walls)?;
     Ok(Setup {
         particles,
         domain,
@@ -150,7 +151,7 @@ pub fn build<const D: usize>(case: &Case) -> Result<Setup<D>> {
         gravity,
         bodies,
         regions: built,
-        wall_solids: shapes.walls.into_iter().map(|(_, s)| s).collect(),
+        wall_solids: shapes.walls,
     })
 }
 

@@ -12,22 +12,21 @@
 //! per evaluation, never per pair. Pair loops gather per particle (Rayon over
 //! particles, no shared writes).
 
+use super::model::kernel_model_methods;
 use crate::boundary::bodies::Load;
 use crate::boundary::extrapolate_walls;
-use crate::boundary::open::OpenBoundaries;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::diffusion::DensityDiffusion;
-use crate::physics::free_surface::{self, FreeSurface};
+
 use crate::physics::kernel::Kernel;
 use crate::physics::renormalisation::density_gradient;
 use crate::physics::shifting::{self, Shift};
 use crate::physics::viscosity::Viscosity;
 use crate::scheme::kinematics::PairKinematics;
 use crate::scheme::model::{
-    chained_passes, fluid_pressure, pressure_and_volume, tensile_pressure, Model, Physics, Powers,
-    Rates,
+    fluid_pressure, pressure_and_volume, tensile_pressure, Model, Physics, Powers, Rates,
 };
 use rayon::prelude::*;
 
@@ -357,6 +356,8 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
 impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
     for Scheme<D, K, Df, V>
 {
+    kernel_model_methods!();
+
     fn evaluate(
         &mut self,
         particles: &mut Particles<D>,
@@ -403,19 +404,6 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         extrapolate_walls(&self.kernel, &ph.eos, &ph.gravity, particles, list, domain);
     }
 
-    fn free_surface(
-        &self,
-        particles: &Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-    ) -> FreeSurface<D> {
-        free_surface::detect(&self.kernel, particles, list, domain)
-    }
-
-    fn set_tensile_control(&mut self, interior: Option<Vec<bool>>) {
-        self.interior = interior;
-    }
-
     fn shift(
         &mut self,
         particles: &mut Particles<D>,
@@ -450,10 +438,6 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         );
         (self.grad, self.grad_from_shift) = (grad, true);
         shift
-    }
-
-    fn last_powers(&self) -> Option<Powers> {
-        self.powers
     }
 
     fn wall_loads(
@@ -502,34 +486,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
             )
     }
 
-    fn w(&self, r: f64) -> f64 {
-        self.kernel.w(r)
-    }
-
-    fn prepare_open(
-        &self,
-        open: &OpenBoundaries<D>,
-        particles: &mut Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-        t: f64,
-    ) {
-        open.prepare(particles, list, domain, &self.kernel, t);
-    }
-
-    fn support_radius(&self) -> f64 {
-        self.kernel.radius()
-    }
-
     fn has_diffusion(&self) -> bool {
         Df::ACTIVE
-    }
-
-    fn neighbour_passes(&self) -> usize {
-        chained_passes(self.free_surface)
-    }
-
-    fn physics(&self) -> &Physics<D> {
-        &self.physics
     }
 }

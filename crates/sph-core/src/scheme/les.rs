@@ -21,21 +21,21 @@
 //! viscosity with consistent shifting; with the shifting factor 0 as well, it is
 //! δ-SPH's momentum and continuity without diffusion.
 
+use super::model::kernel_model_methods;
 use crate::boundary::bodies::Load;
-use crate::boundary::open::OpenBoundaries;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::diffusion::{DeltaSph, DensityDiffusion};
-use crate::physics::free_surface::{self, FreeSurface};
+
 use crate::physics::kernel::Kernel;
 use crate::physics::les::{self, harmonic_mean, Constants, Fields};
 use crate::physics::shifting::Shift;
 use crate::physics::viscosity::physical_k;
 use crate::scheme::kinematics::PairKinematics;
 use crate::scheme::model::{
-    chained_passes, fluid_pressure, pressure_and_volume, tensile_pressure, Diffusivities, Model,
-    Physics, Powers, Rates,
+    fluid_pressure, pressure_and_volume, tensile_pressure, Diffusivities, Model, Physics, Powers,
+    Rates,
 };
 use rayon::prelude::*;
 
@@ -230,6 +230,8 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
 }
 
 impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
+    kernel_model_methods!();
+
     fn evaluate(
         &mut self,
         particles: &mut Particles<D>,
@@ -258,19 +260,6 @@ impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
         fluid_pressure(particles, &self.physics.eos);
     }
 
-    fn free_surface(
-        &self,
-        particles: &Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-    ) -> FreeSurface<D> {
-        free_surface::detect(&self.kernel, particles, list, domain)
-    }
-
-    fn set_tensile_control(&mut self, interior: Option<Vec<bool>>) {
-        self.interior = interior;
-    }
-
     /// No shift between steps: δ-LES-SPH moves particles by δu within the step (the
     /// case checks refuse δ+-SPH's shifting beside it); the free surface as detected.
     fn shift(
@@ -287,10 +276,6 @@ impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
         }
     }
 
-    fn last_powers(&self) -> Option<Powers> {
-        self.powers
-    }
-
     /// No bodies: the case checks keep walls out of δ-LES-SPH cases.
     fn wall_loads(
         &mut self,
@@ -304,35 +289,8 @@ impl<const D: usize, K: Kernel> Model<D> for LesScheme<D, K> {
         vec![Load::default(); bodies]
     }
 
-    fn w(&self, r: f64) -> f64 {
-        self.kernel.w(r)
-    }
-
-    fn prepare_open(
-        &self,
-        open: &OpenBoundaries<D>,
-        particles: &mut Particles<D>,
-        list: &NeighbourList<D>,
-        domain: &Domain<D>,
-        t: f64,
-    ) {
-        open.prepare(particles, list, domain, &self.kernel, t);
-    }
-
-    fn support_radius(&self) -> f64 {
-        self.kernel.radius()
-    }
-
     fn has_diffusion(&self) -> bool {
         self.constants.diffusion > 0.0
-    }
-
-    fn neighbour_passes(&self) -> usize {
-        chained_passes(self.free_surface)
-    }
-
-    fn physics(&self) -> &Physics<D> {
-        &self.physics
     }
 
     fn diffusivities(&self) -> Diffusivities {

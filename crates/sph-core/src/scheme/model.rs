@@ -240,3 +240,56 @@ impl Powers {
         }
     }
 }
+
+/// The [`Model`] methods every kernel scheme answers alike from its fields `kernel`,
+/// `physics`, `interior` (tensile control), `powers` (the last budget powers) and
+/// `free_surface` (whether it detects the surface): expanded inside each scheme's
+/// `impl Model`, so that they are written once.
+macro_rules! kernel_model_methods {
+    () => {
+        fn free_surface(
+            &self,
+            particles: &$crate::particles::Particles<D>,
+            list: &$crate::neighbours::NeighbourList<D>,
+            domain: &$crate::domain::Domain<D>,
+        ) -> $crate::physics::free_surface::FreeSurface<D> {
+            $crate::physics::free_surface::detect(&self.kernel, particles, list, domain)
+        }
+
+        fn set_tensile_control(&mut self, interior: Option<Vec<bool>>) {
+            self.interior = interior;
+        }
+
+        fn last_powers(&self) -> Option<$crate::scheme::Powers> {
+            self.powers
+        }
+
+        fn w(&self, r: f64) -> f64 {
+            self.kernel.w(r)
+        }
+
+        fn prepare_open(
+            &self,
+            open: &$crate::boundary::open::OpenBoundaries<D>,
+            particles: &mut $crate::particles::Particles<D>,
+            list: &$crate::neighbours::NeighbourList<D>,
+            domain: &$crate::domain::Domain<D>,
+            t: f64,
+        ) {
+            open.prepare(particles, list, domain, &self.kernel, t);
+        }
+
+        fn support_radius(&self) -> f64 {
+            self.kernel.radius()
+        }
+
+        fn neighbour_passes(&self) -> usize {
+            $crate::scheme::model::chained_passes(self.free_surface)
+        }
+
+        fn physics(&self) -> &$crate::scheme::Physics<D> {
+            &self.physics
+        }
+    };
+}
+pub(crate) use kernel_model_methods;

@@ -46,7 +46,7 @@ pub struct Simulation<const D: usize> {
     /// The tanks and walls of the case, in case order (tanks first).
     bodies: Vec<Body>,
     /// The solids of the `[[shape]]` walls, for [`Self::wall_crossings`].
-    wall_solids: Vec<geometry::solid::Solid>,
+    wall_solids: Vec<(usize, geometry::solid::Solid)>,
     /// The time-series columns, in order.
     observers: Vec<Box<dyn Observer<D>>>,
     /// On process 0 of a split run: the whole run, gathered for output ([`Self::view`]).
@@ -364,10 +364,8 @@ impl<const D: usize> Simulation<D> {
         let Some(ranks) = self.ranks() else {
             return diagnostics::energies(p, &ph.eos, &ph.gravity);
         };
-        let own: Vec<bool> = (0..p.len())
-            .map(|i| owns_fluid(Some(ranks), p, i))
-            .collect();
-        let e = diagnostics::energies_of(p, &own, &ph.eos, &ph.gravity);
+        let own = |i| owns_fluid(Some(ranks), p, i);
+        let e = diagnostics::energies_of(p, own, &ph.eos, &ph.gravity);
         let mut sums = [e.kinetic, e.potential, e.internal];
         ranks.sum(&mut sums);
         let [kinetic, potential, internal] = sums;
@@ -423,6 +421,12 @@ impl<const D: usize> Simulation<D> {
     /// Free-surface flags, normals and `λ` (Marrone et al. 2010), in the current order.
     pub fn free_surface(&self) -> FreeSurface<D> {
         self.stepper.free_surface(&self.state.particles)
+    }
+
+    /// Why no fluid can ever reach `point` (what a probe point is expected to be; see
+    /// [`geometry::probe_refusal`]), or `None` where fluid can.
+    pub fn probe_refusal(&self, point: &Vector<D>) -> Option<String> {
+        geometry::probe_refusal(&self.case, &self.stepper.domain, &self.wall_solids, point)
     }
 
     /// Fluid particles inside a wall now (see [`diagnostics::wall_crossings`]).

@@ -304,12 +304,12 @@ impl<const D: usize> Stepper<D> {
         if gone == 0 {
             return;
         }
-        let leaving: Vec<usize> = (0..p.len()).filter(|&i| !keep[i]).collect();
         if let Some(b) = budget {
             let ph = self.model.physics();
-            let leaving: Vec<bool> = keep.iter().map(|k| !k).collect();
-            b.removed_energy += diagnostics::energies_of(p, &leaving, &ph.eos, &ph.gravity).total();
+            let leaving = |i: usize| !keep[i];
+            b.removed_energy += diagnostics::energies_of(p, leaving, &ph.eos, &ph.gravity).total();
         }
+        let leaving: Vec<usize> = (0..p.len()).filter(|&i| !keep[i]).collect();
         let mass: f64 = leaving.iter().map(|&i| p.mass[i]).sum();
         if self.default_domain && state.counters.removed == 0 {
             let centre = leaving.iter().map(|&i| p.x[i]).sum::<Vector<D>>() / gone as f64;

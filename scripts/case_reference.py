@@ -57,7 +57,7 @@ class Reference:
                 out.extend(self.table_rows(f"[[{key}]]" if array else f"[{key}]", key, table))
         return out
 
-    def table_rows(self, header, name, table):
+    def table_rows(self, header, name, table, prefix=""):
         out = []
         for key, node in table["properties"].items():
             inner = self.table_of(node)
@@ -65,7 +65,9 @@ class Reference:
                 out.extend(self.table_rows(f"[[{name}.{key}]]", f"{name}.{key}", inner))
                 continue
             required = key in table.get("required", [])
-            out.append(self.row(f"`{header} {key}`", node, required, inline=inner))
+            out.append(self.row(f"`{header} {prefix}{key}`", node, required, inline=inner))
+            if inner is not None and "properties" in inner and documented(inner):
+                out.extend(self.table_rows(header, name, inner, prefix=f"{prefix}{key}."))
         return out
 
     def tagged_rows(self, name, table):
@@ -104,6 +106,11 @@ class Reference:
                     parts.append(f"`{value}`" + (f": {about.rstrip('.')}" if about else ""))
             return "One of " + "; ".join(parts) + "."
         return ""
+
+
+def documented(table):
+    """Whether every key of a table has a description of its own (then each gets a row)."""
+    return all(v.get("description") for v in table["properties"].values())
 
 
 def tagged(node):

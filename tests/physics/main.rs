@@ -10,6 +10,7 @@ mod impinging_jet;
 mod les;
 mod loads;
 mod long_runs;
+mod moving_bodies;
 mod open_boundaries;
 mod shifting;
 mod taylor_green;

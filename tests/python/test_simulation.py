@@ -433,3 +433,26 @@ def test_shapes_from_python():
     config["shape"][0]["polygon"] = [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]
     with pytest.raises(ValueError, match=r"^shape\[0\]\.polygon = edges 0 and 2 cross"):
         ds.Simulation(config)
+
+
+def test_prescribed_motion_moves_the_walls_and_reports_the_body():
+    case = example("validation/stokes_plate", particles__spacing=0.01)
+    case["time"]["end"] = 0.3
+    sim = ds.Simulation(case)
+    x0 = sim.positions
+    sim.run(until=0.3)
+    u_amp, omega = 0.1, 2 * np.pi
+    plate = sim.body_motions()["plate"]
+    # the pivot (the origin) moves by (U/ω) sin ωt along x, at U cos ωt
+    np.testing.assert_allclose(plate["position"], [u_amp / omega * np.sin(omega * 0.3), 0.0], atol=1e-15)
+    np.testing.assert_allclose(plate["velocity"], [u_amp * np.cos(omega * 0.3), 0.0], atol=1e-15)
+    assert plate["rotation"].shape == (1,) and plate["rotation"][0] == 0.0
+    assert list(sim.body_motions()) == ["plate"]
+    # its wall particles moved rigidly with it (along the periodic x, wrapped), the lid not
+    wall = sim.kind == ds.WALL
+    moved = sim.positions[wall] - x0[wall]
+    shift = u_amp / omega * np.sin(omega * 0.3)
+    on_plate = x0[wall][:, 1] < 0
+    np.testing.assert_allclose(np.mod(moved[on_plate, 0] - shift + 0.1, 0.2) - 0.1, 0.0, atol=1e-12)
+    assert np.all(moved[~on_plate] == 0.0)
+    np.testing.assert_allclose(sim.velocities[wall][on_plate, 0], u_amp * np.cos(omega * 0.3), rtol=1e-12)

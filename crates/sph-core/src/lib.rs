@@ -9,7 +9,7 @@
 //!
 //! Modules by concept, each depending only on those listed before it: [`particles`],
 //! [`domain`] → [`decomposition`] → [`distributed`], [`neighbours`] → [`physics`] → [`boundary`] → [`case`] → [`scheme`],
-//! [`geometry`], [`forcing`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
+//! [`geometry`], [`forcing`], [`motion`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
 
 pub mod allocator;
 pub mod boundary;
@@ -22,6 +22,7 @@ pub mod error;
 pub mod forcing;
 pub mod geometry;
 pub mod io;
+pub mod motion;
 pub mod neighbours;
 pub mod particles;
 pub mod physics;

@@ -87,3 +87,33 @@ pub(crate) fn free_surface<'py, const D: usize>(
     )?;
     Ok(dict)
 }
+
+/// `{name: {"position", "rotation", "velocity", "angular_velocity"}}` for every moving
+/// body now: the pivot's position (D,) and velocity (D,), the rotation (2D: (1,), the
+/// angle; 3D: (3,), the rotation vector) and the angular velocity (2D (1,), 3D (3,)).
+pub(crate) fn body_motions<'py, const D: usize>(
+    py: Python<'py>,
+    s: &Simulation<D>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    let turned: &[usize] = if D == 2 { &[2] } else { &[0, 1, 2] };
+    for (name, pose) in s.moving_body_names().into_iter().zip(s.body_poses()) {
+        let entry = PyDict::new(py);
+        let angular = |v: &[f64]| turned.iter().map(|&k| v[k]).collect::<Vec<_>>();
+        entry.set_item("position", PyArray1::from_slice(py, pose.pivot.as_slice()))?;
+        entry.set_item(
+            "rotation",
+            PyArray1::from_vec(py, angular(pose.phi.as_slice())),
+        )?;
+        entry.set_item(
+            "velocity",
+            PyArray1::from_slice(py, pose.velocity.as_slice()),
+        )?;
+        entry.set_item(
+            "angular_velocity",
+            PyArray1::from_vec(py, angular(pose.omega.as_slice())),
+        )?;
+        dict.set_item(name, entry)?;
+    }
+    Ok(dict)
+}

@@ -500,6 +500,15 @@ impl PySimulation {
         Ok(dict)
     }
 
+    /// The moving bodies now (``motion = "prescribed"``), by name:
+    /// ``{name: {"position": (D,), "rotation": (1,) or (3,), "velocity": (D,),
+    /// "angular_velocity": (1,) or (3,)}}``: the pivot's position [m] and velocity
+    /// [m/s], the rotation [rad] (2D the angle about z, 3D the rotation vector) and the
+    /// angular velocity [rad/s]. Empty when every body is fixed.
+    fn body_motions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        each!(&self.solver, s => measures::body_motions(py, s))
+    }
+
     /// Pressure [Pa] interpolated (Shepard) from the fluid at ``points``: array-like
     /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
     /// fluid within the kernel support reads NaN (no fluid there, which is not zero

@@ -1,12 +1,14 @@
-//! Fixed dummy wall particles with extrapolated pressure (Adami, Hu & Adams 2012,
+//! Dummy wall particles with extrapolated pressure (Adami, Hu & Adams 2012,
 //! J. Comput. Phys. 231:7057):
 //!
 //! `p_w = [Σ_f p_f W_wf + (g - a_w)·Σ_f ρ_f (x_w - x_f) W_wf] / Σ_f W_wf`,
 //! `ρ_w = ρ0 + p_w/c0²`, and for the viscous term the wall velocity seen by the
 //! fluid is `2 u_w - ũ_w` with `ũ_w = Σ_f u_f W_wf / Σ_f W_wf` (no-slip). Free-slip
-//! walls drop the wall-fluid viscous interaction instead. Walls do not accelerate
-//! (`a_w = 0`): they are at rest or slide in their own plane with a constant `u_w`
-//! (a lid); a wall particle with no fluid neighbour takes p = 0, ρ = ρ0, `u_w`.
+//! walls drop the wall-fluid viscous interaction instead. Fixed walls do not
+//! accelerate (`a_w = 0`): they are at rest or slide in their own plane with a
+//! constant `u_w` (a lid); the walls of a moving body carry the `u_w` and `a_w` of its
+//! motion (see [`crate::motion`]). A wall particle with no fluid neighbour takes p = 0,
+//! ρ = ρ0, `u_w`.
 //!
 //! The extrapolated `p_w` is clamped at zero: a wall does not pull on the fluid.
 //!
@@ -61,12 +63,12 @@ pub fn extrapolate_walls<const D: usize, K: Kernel>(
                 su += state.u[f] * w;
             }
             let uw = state.u[i];
+            let g = match &state.wall_acceleration {
+                Some(a) => gravity - a[i],
+                None => *gravity,
+            };
             if sw > 0.0 {
-                (
-                    i,
-                    ((sp + gravity.dot(&srx)) / sw).max(0.0),
-                    uw * 2.0 - su / sw,
-                )
+                (i, ((sp + g.dot(&srx)) / sw).max(0.0), uw * 2.0 - su / sw)
             } else {
                 (i, 0.0, uw)
             }

@@ -74,6 +74,7 @@ pub struct Compiled {
     slots: Vec<Slot>,
 }
 
+#[derive(Clone, Copy)]
 enum Slot {
     Coordinate(usize),
     Time,
@@ -119,6 +120,34 @@ impl Compiled {
             text: text.to_string(),
             expr,
             timed: variables.time,
+            slots,
+        })
+    }
+
+    /// The exact derivative in time `∂/∂t` (exmex's symbolic differentiation); zero
+    /// for an expression without `t`.
+    pub fn time_derivative(&self) -> Result<Self> {
+        let at = self.slots.iter().position(|s| matches!(s, Slot::Time));
+        let expr = match at {
+            Some(at) => self.expr.clone().partial(at),
+            None => exmex::parse::<f64>("0"),
+        }
+        .map_err(|e| {
+            SphError::invalid(
+                &self.key,
+                format!("{:?}", self.text),
+                format!("an expression exmex can differentiate in t ({e})"),
+            )
+        })?;
+        let slots = match at {
+            Some(_) => self.slots.clone(),
+            None => Vec::new(),
+        };
+        Ok(Compiled {
+            key: self.key.clone(),
+            text: format!("d/dt {}", self.text),
+            expr,
+            timed: self.timed,
             slots,
         })
     }

@@ -7,6 +7,7 @@ mod checks;
 mod diagnostics_options;
 pub mod expression;
 pub mod json_schema;
+pub(crate) mod motion;
 mod open_boundaries;
 mod schema;
 mod scheme_options;
@@ -15,6 +16,7 @@ mod size;
 mod toml_errors;
 mod validate;
 
+pub use motion::*;
 pub use open_boundaries::*;
 pub use schema::*;
 pub use shapes::*;

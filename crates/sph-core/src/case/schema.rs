@@ -2,6 +2,7 @@
 //! default. Unknown keys are rejected by serde; values are checked in
 //! [`super::validate`]. All quantities are SI.
 
+use super::motion::{MotionChoice, PrescribedConfig};
 use super::open_boundaries::OpenBoundaryConfig;
 use super::shapes::{Role, ShapeConfig};
 use crate::physics::kernel::KernelChoice;
@@ -147,6 +148,13 @@ pub struct WallConfig {
     /// Name of the body in the loads' columns. Default: `wall<k>`.
     #[serde(default)]
     pub name: Option<String>,
+    /// How the region moves: "fixed" or "prescribed" (then its `prescribed` table
+    /// gives the motion). Default: "fixed".
+    #[serde(default)]
+    pub motion: Option<MotionChoice>,
+    /// The motion when `motion = "prescribed"`.
+    #[serde(default)]
+    pub prescribed: Option<PrescribedConfig>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -183,6 +191,13 @@ pub struct TankConfig {
     /// Name of the body in the loads' columns. Default: `tank<k>`.
     #[serde(default)]
     pub name: Option<String>,
+    /// How the region moves: "fixed" or "prescribed" (then its `prescribed` table
+    /// gives the motion). Default: "fixed".
+    #[serde(default)]
+    pub motion: Option<MotionChoice>,
+    /// The motion when `motion = "prescribed"`.
+    #[serde(default)]
+    pub prescribed: Option<PrescribedConfig>,
 }
 
 impl TankConfig {
@@ -337,6 +352,27 @@ pub struct OutputConfig {
 }
 
 impl Case {
+    /// The motion of every body (in the order of [`Self::body_names`]) as the case
+    /// key of its region (`tank[0]`, `wall[1]`, `shape[2]`), its `motion` and its
+    /// `prescribed` table.
+    pub fn body_motions(&self) -> Vec<(String, MotionChoice, Option<&PrescribedConfig>)> {
+        let tanks = (self.tank.iter().enumerate())
+            .map(|(k, t)| (format!("tank[{k}]"), t.motion, t.prescribed.as_ref()));
+        let walls = (self.wall.iter().enumerate())
+            .map(|(k, w)| (format!("wall[{k}]"), w.motion, w.prescribed.as_ref()));
+        let shapes = (self.shape.iter().enumerate())
+            .filter(|(_, s)| s.role == Role::Wall)
+            .map(|(k, s)| (format!("shape[{k}]"), s.motion, s.prescribed.as_ref()));
+        (tanks.chain(walls).chain(shapes))
+            .map(|(key, motion, table)| (key, motion.unwrap_or_default(), table))
+            .collect()
+    }
+
+    /// Whether any wall region moves.
+    pub fn has_moving_bodies(&self) -> bool {
+        (self.body_motions().iter()).any(|(_, motion, _)| *motion != MotionChoice::Fixed)
+    }
+
     /// The bodies' names in build order, tanks, walls, then wall shapes, each with the
     /// key that sets it (`tank[k].name`; the default `tank<k>`, `wall<k>`, `shape<k>`).
     pub fn body_names(&self) -> Vec<(String, String)> {

@@ -3,6 +3,7 @@
 //! lattice, a wall of dummy particles, or a hole cut out of the fluid. Its geometry is
 //! built and checked in [`crate::geometry::solid`].
 
+use super::motion::{MotionChoice, PrescribedConfig};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -127,6 +128,13 @@ pub struct ShapeConfig {
     /// Default: the shape's top.
     #[serde(default)]
     pub surface: Option<f64>,
+    /// How the wall moves (walls only): "fixed" or "prescribed" (then its `prescribed` table
+    /// gives the motion). Default: "fixed".
+    #[serde(default)]
+    pub motion: Option<MotionChoice>,
+    /// The motion when `motion = "prescribed"`.
+    #[serde(default)]
+    pub prescribed: Option<PrescribedConfig>,
 }
 
 impl ShapeConfig {

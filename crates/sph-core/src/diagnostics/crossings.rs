@@ -1,7 +1,7 @@
 //! Fluid particles found inside a wall: a failure count for the dummy-particle walls,
 //! which do not forbid crossing.
 
-use crate::case::Case;
+use crate::case::{Case, MotionChoice};
 use crate::geometry::solid::Solid;
 use crate::particles::{Kind, Particles, Vector};
 use rayon::prelude::*;
@@ -10,7 +10,8 @@ use rayon::prelude::*;
 /// Δx/2 beyond a closed face of a tank, within its layers and below the last wall
 /// particles at an open face, over which fluid may pass), or deeper than Δx/2 inside
 /// a `[[wall]]` box or a `[[shape]]` wall (`wall_solids`, with their index in `case.shape`). Zero in a sound run;
-/// dummy-particle walls do not forbid crossing, so this counts the failures.
+/// dummy-particle walls do not forbid crossing, so this counts the failures. Moving
+/// bodies are left out: their walls are no longer where the case builds them.
 pub fn wall_crossings<const D: usize>(
     case: &Case,
     wall_solids: &[(usize, Solid)],
@@ -20,7 +21,15 @@ pub fn wall_crossings<const D: usize>(
     let inside = |x: &Vector<D>, lo: &[f64], hi: &[f64], margin: f64| {
         (0..D).all(|d| x[d] > lo[d] + margin && x[d] < hi[d] - margin)
     };
-    let tanks: Vec<_> = case.tank.iter().map(|t| (t, t.open_faces(D))).collect();
+    let fixed = |m: Option<MotionChoice>| m.unwrap_or_default() == MotionChoice::Fixed;
+    let tanks: Vec<_> = (case.tank.iter())
+        .filter(|t| fixed(t.motion))
+        .map(|t| (t, t.open_faces(D)))
+        .collect();
+    let walls: Vec<_> = case.wall.iter().filter(|w| fixed(w.motion)).collect();
+    let solids: Vec<_> = (wall_solids.iter())
+        .filter(|(k, _)| fixed(case.shape[*k].motion))
+        .collect();
     let in_tank_wall = |x: &Vector<D>, (t, open): &(&crate::case::TankConfig, Vec<(usize, i8)>)| {
         let pad = t.layer_count(case) as f64 * dx;
         let within_layers = (0..D).all(|d| x[d] > t.lo[d] - pad && x[d] < t.hi[d] + pad);
@@ -45,8 +54,8 @@ pub fn wall_crossings<const D: usize>(
         .filter(|&i| {
             let x = &p.x[i];
             tanks.iter().any(|tank| in_tank_wall(x, tank))
-                || case.wall.iter().any(|w| inside(x, &w.lo, &w.hi, 0.5 * dx))
-                || (wall_solids.iter()).any(|(_, s)| s.signed_distance(x.as_slice()) < -0.5 * dx)
+                || walls.iter().any(|w| inside(x, &w.lo, &w.hi, 0.5 * dx))
+                || (solids.iter()).any(|(_, s)| s.signed_distance(x.as_slice()) < -0.5 * dx)
         })
         .count()
 }

@@ -8,6 +8,7 @@ use super::sensors::Sensor;
 use super::Energies;
 use crate::boundary::bodies::{Body, Load};
 use crate::case::Case;
+use crate::motion::rigid::Pose;
 use crate::particles::Vector;
 
 /// What the columns read from the run at a row (collective in a split run: every
@@ -32,6 +33,8 @@ pub trait Measure<const D: usize> {
     fn surge_front(&self, axis: usize) -> f64;
     /// The fluid's load on each body, in case order.
     fn loads(&mut self) -> Vec<Load<D>>;
+    /// The pose of each moving body, in case order.
+    fn body_poses(&self) -> Vec<Pose<D>>;
 }
 
 /// A group of time-series columns.
@@ -80,7 +83,42 @@ pub fn observers<const D: usize>(case: &Case, bodies: &[Body]) -> Vec<Box<dyn Ob
         let dynamic = case.dynamic_force();
         list.push(Box::new(Loads { names, dynamic }));
     }
+    if case.has_moving_bodies() {
+        let names = crate::motion::moving_names(case, bodies);
+        list.push(Box::new(BodyMotions { names }));
+    }
     list
+}
+
+/// Per moving body: `<name>_x`, `_y` (`_z`) the pivot's position, the rotation
+/// (2D `<name>_angle`; 3D `_rx`, `_ry`, `_rz`, the rotation vector), the pivot's
+/// velocity `_u`, `_v` (`_w`) and the angular velocity (2D `_omega`; 3D `_omega_x`,
+/// `_omega_y`, `_omega_z`).
+struct BodyMotions {
+    names: Vec<String>,
+}
+
+impl<const D: usize> Observer<D> for BodyMotions {
+    fn header(&self, out: &mut Vec<String>) {
+        let (axes, velocities) = (&["x", "y", "z"][..D], &["u", "v", "w"][..D]);
+        let (rotation, omega): (&[&str], &[&str]) = match D {
+            2 => (&["angle"], &["omega"]),
+            _ => (&["rx", "ry", "rz"], &["omega_x", "omega_y", "omega_z"]),
+        };
+        for name in &self.names {
+            let all = axes.iter().chain(rotation).chain(velocities).chain(omega);
+            out.extend(all.map(|c| format!("{name}_{c}")));
+        }
+    }
+    fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
+        let turned: &[usize] = if D == 2 { &[2] } else { &[0, 1, 2] };
+        for pose in run.body_poses() {
+            out.extend(pose.pivot.iter());
+            out.extend(turned.iter().map(|&k| pose.phi[k]));
+            out.extend(pose.velocity.iter());
+            out.extend(turned.iter().map(|&k| pose.omega[k]));
+        }
+    }
 }
 
 /// `time`, `step`, `dt`.

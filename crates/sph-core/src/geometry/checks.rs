@@ -3,7 +3,7 @@
 
 use super::solid::Solid;
 use super::vector;
-use crate::case::Case;
+use crate::case::{Case, MotionChoice};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
@@ -122,8 +122,8 @@ pub fn probe_refusal<const D: usize>(
     })
 }
 
-/// The wall (`tank[k]`, `wall[k]` or `shape[k]`) inside which `x` lies deeper than
-/// `depth`.
+/// The fixed wall (`tank[k]`, `wall[k]` or `shape[k]`) inside which `x` lies deeper
+/// than `depth` (a moving wall leaves where it was built).
 fn buried_in_wall<const D: usize>(
     case: &Case,
     wall_solids: &[(usize, Solid)],
@@ -131,7 +131,13 @@ fn buried_in_wall<const D: usize>(
     depth: f64,
 ) -> Option<String> {
     let inside = |lo: &Vector<D>, hi: &Vector<D>| (0..D).all(|d| x[d] > lo[d] && x[d] < hi[d]);
-    for (k, t) in case.tank.iter().enumerate() {
+    let fixed = |m: Option<MotionChoice>| m.unwrap_or_default() == MotionChoice::Fixed;
+    for (k, t) in case
+        .tank
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| fixed(t.motion))
+    {
         let (lo, hi): (Vector<D>, Vector<D>) = (vector(&t.lo), vector(&t.hi));
         let pad = Vector::<D>::repeat(t.layer_count(case) as f64 * case.dx());
         let open = t.open_faces(D);
@@ -143,7 +149,12 @@ fn buried_in_wall<const D: usize>(
             return Some(format!("tank[{k}]"));
         }
     }
-    for (k, b) in case.wall.iter().enumerate() {
+    for (k, b) in case
+        .wall
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| fixed(b.motion))
+    {
         let (lo, hi): (Vector<D>, Vector<D>) = (vector(&b.lo), vector(&b.hi));
         let margin = Vector::<D>::repeat(depth);
         if inside(&(lo + margin), &(hi - margin)) {
@@ -152,6 +163,7 @@ fn buried_in_wall<const D: usize>(
     }
     wall_solids
         .iter()
+        .filter(|(k, _)| fixed(case.shape[*k].motion))
         .find(|(_, solid)| solid.signed_distance(x.as_slice()) < -depth)
         .map(|(k, _)| format!("shape[{k}]"))
 }

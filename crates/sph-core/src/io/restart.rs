@@ -235,6 +235,8 @@ impl Reader<'_> {
                 Ok(_) => Some(self.vectors("shifting_velocity", n)?),
                 Err(_) => None,
             },
+            // a function of time: the motions set it again at the restart time
+            wall_acceleration: None,
             next_id,
         };
         let case_bytes: Vec<u8> = self

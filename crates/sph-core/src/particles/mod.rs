@@ -58,13 +58,16 @@ pub struct Particles<const D: usize> {
     /// `δr/Δt` of the last δ+-SPH shift (Sun et al. 2017), kept only when the case
     /// shifts particles.
     pub shift_velocity: Option<Vec<Vector<D>>>,
+    /// Acceleration `a_w` of each wall particle of a moving body (zero for the others
+    /// and for fluid), kept only when a body moves (see [`crate::motion`]).
+    pub wall_acceleration: Option<Vec<Vector<D>>>,
     /// The id the next particle created gets (ids of removed particles are not reused).
     pub next_id: u32,
 }
 
 impl<const D: usize> Particles<D> {
     /// Every per-particle column: the one list a new column is added to.
-    pub fn columns_mut(&mut self) -> [&mut dyn Column; 9] {
+    pub fn columns_mut(&mut self) -> [&mut dyn Column; 10] {
         [
             &mut self.x,
             &mut self.u,
@@ -75,11 +78,12 @@ impl<const D: usize> Particles<D> {
             &mut self.id,
             &mut self.u_wall_visc,
             &mut self.shift_velocity,
+            &mut self.wall_acceleration,
         ]
     }
 
     /// [`Self::columns_mut`], to read.
-    pub fn columns(&self) -> [&dyn Column; 9] {
+    pub fn columns(&self) -> [&dyn Column; 10] {
         [
             &self.x,
             &self.u,
@@ -90,6 +94,7 @@ impl<const D: usize> Particles<D> {
             &self.id,
             &self.u_wall_visc,
             &self.shift_velocity,
+            &self.wall_acceleration,
         ]
     }
 
@@ -116,6 +121,11 @@ impl<const D: usize> Particles<D> {
     /// Keeps the shifting velocity (zero until the first shift), or drops it.
     pub fn keep_shift_velocity(&mut self, keep: bool) {
         self.shift_velocity = keep.then(|| vec![Vector::zeros(); self.len()]);
+    }
+
+    /// Keeps the wall acceleration (zero until the bodies are placed), or drops it.
+    pub fn keep_wall_acceleration(&mut self, keep: bool) {
+        self.wall_acceleration = keep.then(|| vec![Vector::zeros(); self.len()]);
     }
 
     /// Appends one particle with the next free id (its other columns zero).

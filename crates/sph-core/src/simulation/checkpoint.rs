@@ -106,6 +106,10 @@ impl<const D: usize> Simulation<D> {
         if memories.next().is_some() {
             return Err(corrupt(FILTERS));
         }
+        if let Some(motions) = &sim.stepper.motions {
+            particles.keep_wall_acceleration(true);
+            motions.place(&mut particles, c.time, &sim.stepper.domain);
+        }
         sim.state = State {
             particles,
             time: c.time,

@@ -5,6 +5,7 @@ use super::{EnergyBudget, Simulation};
 use crate::boundary::bodies::Load;
 use crate::diagnostics::series::Measure;
 use crate::diagnostics::Energies;
+use crate::motion::rigid::Pose;
 use crate::particles::Vector;
 
 impl<const D: usize> Simulation<D> {
@@ -77,5 +78,8 @@ impl<const D: usize> Measure<D> for Row<'_, D> {
     }
     fn loads(&mut self) -> Vec<Load<D>> {
         self.sim.loads()
+    }
+    fn body_poses(&self) -> Vec<Pose<D>> {
+        self.sim.body_poses()
     }
 }

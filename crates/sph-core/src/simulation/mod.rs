@@ -27,6 +27,7 @@ use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::forcing::BodyForce;
 use crate::geometry;
+use crate::motion::{rigid::Pose, Motions};
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::free_surface::FreeSurface;
 use crate::physics::viscosity::equivalent_nu;
@@ -91,7 +92,12 @@ impl<const D: usize> Simulation<D> {
         check_inflow_speeds(&case, setup.eos.c0)?;
         let open = OpenBoundaries::of(&case, &setup.particles, &setup.domain, &setup.eos)?;
         let forcing = BodyForce::of(&case, &setup.particles)?;
-        let stepper = Stepper::new(&case, model, control, setup.domain, open, forcing);
+        let motions = Motions::of(&case, &setup.bodies, &setup.particles, &setup.domain)?;
+        if let Some(motions) = &motions {
+            setup.particles.keep_wall_acceleration(true);
+            motions.place(&mut setup.particles, 0.0, &setup.domain);
+        }
+        let stepper = Stepper::new(&case, model, control, setup.domain, open, forcing, motions);
         Ok(Self {
             budget: case.diagnostics.energy_budget.then(EnergyBudget::default),
             observers: observers(&case, &setup.bodies),
@@ -416,6 +422,16 @@ impl<const D: usize> Simulation<D> {
             &s.domain,
             point,
         )
+    }
+
+    /// The pose of every moving body now, in case order (none without moving bodies).
+    pub fn body_poses(&self) -> Vec<Pose<D>> {
+        (self.stepper.motions.as_ref()).map_or(Vec::new(), |m| m.poses(self.state.time))
+    }
+
+    /// The names of the moving bodies, in the order of [`Self::body_poses`].
+    pub fn moving_body_names(&self) -> Vec<String> {
+        crate::motion::moving_names(&self.case, &self.bodies)
     }
 
     /// Free-surface flags, normals and `λ` (Marrone et al. 2010), in the current order.

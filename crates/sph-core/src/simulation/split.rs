@@ -117,6 +117,9 @@ fn check_splittable<const D: usize>(sim: &Simulation<D>) -> Result<()> {
     if case.diagnostics.energy_budget {
         return refuse("diagnostics.energy_budget", "true", "no energy budget");
     }
+    if case.has_moving_bodies() {
+        return refuse("motion", "\"prescribed\"", "no moving bodies");
+    }
     if case.scheme.turbulence == TurbulenceChoice::DeltaLes {
         return refuse("scheme.turbulence", "\"delta_les\"", "no δ-LES-SPH");
     }

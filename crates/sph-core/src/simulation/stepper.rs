@@ -10,6 +10,7 @@ use crate::distributed::Ranks;
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::forcing::BodyForce;
+use crate::motion::Motions;
 use crate::neighbours::{ListPolicy, NeighbourList};
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::free_surface::FreeSurface;
@@ -30,6 +31,7 @@ macro_rules! context {
             open: $s.open.as_ref(),
             time: $time,
             forcing: $s.forcing.as_ref(),
+            motions: $s.motions.as_ref(),
             halo: $s.ranks.as_ref(),
         }
     };
@@ -50,6 +52,8 @@ pub struct Stepper<const D: usize> {
     pub(super) open: Option<OpenBoundaries<D>>,
     /// The body force besides gravity, when the case has one.
     pub(super) forcing: Option<BodyForce<D>>,
+    /// The moving bodies, when the case has any.
+    pub(super) motions: Option<Motions<D>>,
     /// This process's share of a run split over several.
     pub(super) ranks: Option<Ranks<D>>,
     dx: f64,
@@ -71,6 +75,7 @@ impl<const D: usize> Stepper<D> {
         domain: Domain<D>,
         open: Option<OpenBoundaries<D>>,
         forcing: Option<BodyForce<D>>,
+        motions: Option<Motions<D>>,
     ) -> Self {
         let integrator: Box<dyn TimeIntegrator<D>> = match case.scheme.integrator {
             IntegratorChoice::Rk4 => Box::<Rk4<D>>::default(),
@@ -92,6 +97,7 @@ impl<const D: usize> Stepper<D> {
             domain,
             open,
             forcing,
+            motions,
             ranks: None,
             dx: case.dx(),
             tensile_control: case.scheme.tensile_control,
@@ -235,6 +241,7 @@ impl<const D: usize> Stepper<D> {
         let owned = self.ranks.as_ref().map(|r| r.owned());
         let mut cx = context!(self, state.time);
         let local = (self.integrator.begin(&mut state.particles, &mut cx)).max_acceleration(owned);
+        let local = local.max(wall_acceleration(&state.particles));
         let a_max = cx.halo.map_or(local, |r| r.max(local));
         if let (Some(b), Some(now)) = (budget.as_deref_mut(), cx.model.last_powers()) {
             b.advance(now);
@@ -249,6 +256,9 @@ impl<const D: usize> Stepper<D> {
         self.integrator.advance(dt, &mut state.particles, &mut cx);
         let domain = self.domain;
         (state.particles.x.par_iter_mut()).for_each(|x| domain.wrap(x));
+        if let Some(motions) = &self.motions {
+            motions.place(&mut state.particles, state.time + dt, &domain);
+        }
         self.refresh_halo(&mut state.particles);
         self.last_acceleration = a_max;
         state.dt = dt;
@@ -360,4 +370,14 @@ impl<const D: usize> Stepper<D> {
         let particle = next().parse().unwrap_or(u32::MAX);
         Err(unstable(particle, next(), next()))
     }
+}
+
+/// The largest acceleration of a moving body's wall particle (zero without moving
+/// bodies), which bounds Δt and the lists' reach as the fluid's does.
+fn wall_acceleration<const D: usize>(p: &Particles<D>) -> f64 {
+    (p.wall_acceleration.as_ref()).map_or(0.0, |a| {
+        (a.par_iter().map(|a| a.norm_squared()))
+            .reduce(|| 0.0, f64::max)
+            .sqrt()
+    })
 }

@@ -21,6 +21,7 @@ use crate::boundary::open::OpenBoundaries;
 use crate::distributed::Ranks;
 use crate::domain::Domain;
 use crate::forcing::BodyForce;
+use crate::motion::Motions;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::scheme::model::{Model, Rates};
@@ -37,15 +38,18 @@ pub struct Context<'a, const D: usize> {
     pub time: f64,
     /// The case's body force field besides gravity, when it has one.
     pub forcing: Option<&'a BodyForce<D>>,
+    /// The moving bodies, placed at each evaluation's time, when the case has any.
+    pub motions: Option<&'a Motions<D>>,
     /// This process's share of a split run, whose halo is refreshed before each
     /// evaluation within a step (the state at a step's start is already refreshed).
     pub halo: Option<&'a Ranks<D>>,
 }
 
 impl<const D: usize> Context<'_, D> {
-    /// The rates at the particles' state (see [`Model::evaluate`]), with the buffer
-    /// particles of open boundaries set before and held after, and the body force at
-    /// the state's time, `elapsed` after the step's start. In a split run the halo
+    /// The rates at the particles' state (see [`Model::evaluate`]), with the moving
+    /// bodies placed and the buffer particles of open boundaries set before (the
+    /// step's start has its bodies placed already), the open boundaries held after,
+    /// and the body force at the state's time, `elapsed` after the step's start. In a split run the halo
     /// gets its owners' state first, unless the state is the step's start (`elapsed`
     /// zero), which the step before left refreshed.
     pub fn evaluate(
@@ -57,6 +61,9 @@ impl<const D: usize> Context<'_, D> {
     ) {
         if let Some(halo) = self.halo.filter(|_| elapsed > 0.0) {
             halo.refresh(p);
+        }
+        if let Some(motions) = self.motions.filter(|_| elapsed > 0.0) {
+            motions.place(p, self.time + elapsed, self.domain);
         }
         if let Some(open) = self.open {
             self.model

@@ -5,6 +5,7 @@
 
 mod bodies;
 mod initial;
+mod motion;
 mod open_boundaries;
 mod scheme;
 mod shapes;
@@ -22,6 +23,7 @@ impl Case {
         self.validate_particles_and_fluid()?;
         self.validate_regions()?;
         self.validate_tanks()?;
+        self.validate_motions()?;
         self.validate_domain()?;
         self.validate_initial()?;
         self.validate_forcing()?;

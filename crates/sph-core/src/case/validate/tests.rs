@@ -212,3 +212,61 @@ fn thin_wall_boxes_are_refused() {
         "{e}"
     );
 }
+
+/// MINIMAL with a baffle `[[wall]]` carrying `keys` (after its box) and `table` as
+/// its `prescribed` table when given.
+fn moving_baffle(keys: &str, table: Option<&str>) -> String {
+    let mut text =
+        MINIMAL.to_string() + "[[wall]]\nlo = [0.3, 0.0]\nhi = [0.4, 0.1]\n" + keys + "\n";
+    if let Some(table) = table {
+        text += &format!("[wall.prescribed]\n{table}\n");
+    }
+    text
+}
+
+#[test]
+fn motions_agree_with_their_tables_and_the_dimension() {
+    let ok = moving_baffle(
+        "motion = \"prescribed\"",
+        Some("displacement = [\"0.01*sin(t)\", \"0\"]\nrotation = [\"0\"]\npivot = [0.35, 0.05]"),
+    );
+    assert!(Case::from_toml_str(&ok).is_ok());
+    let refused = [
+        (
+            moving_baffle("motion = \"prescribed\"", None),
+            "wall[0].motion = \"prescribed\": expected a table wall[0].prescribed",
+        ),
+        (
+            moving_baffle("", Some("displacement = [\"t\", \"0\"]")),
+            "wall[0].prescribed = a table: expected motion = \"prescribed\"",
+        ),
+        (
+            moving_baffle("motion = \"prescribed\"", Some("displacement = [\"t\"]")),
+            "wall[0].prescribed.displacement = 1 expressions: expected one expression per axis",
+        ),
+        (
+            moving_baffle(
+                "motion = \"prescribed\"",
+                Some("rotation = [\"t\", \"0\", \"0\"]"),
+            ),
+            "wall[0].prescribed.rotation = 3 expressions: expected one expression: the angle",
+        ),
+        (
+            moving_baffle("motion = \"prescribed\"", Some("rotation = [\"t\"]")),
+            "wall[0].prescribed.pivot = none: expected the point the body turns about",
+        ),
+        (
+            moving_baffle("motion = \"prescribed\"", Some("ramp = -1.0")),
+            "wall[0].prescribed.ramp = -1",
+        ),
+        (
+            moving_baffle("motion = \"prescribed\"", Some("ramp = 1.0"))
+                + "[diagnostics]\nenergy_budget = true\n",
+            "diagnostics.energy_budget = true: expected no energy budget in a case with moving",
+        ),
+    ];
+    for (text, start) in refused {
+        let e = error_of(&text);
+        assert!(e.starts_with(start), "{e}\nexpected to start with: {start}");
+    }
+}

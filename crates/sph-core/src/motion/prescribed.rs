@@ -1,0 +1,207 @@
+//! A prescribed rigid motion: the pivot's displacement and the rotation about it as
+//! expressions of time (exmex), differentiated exactly once and twice, with an
+//! optional cosine ramp.
+
+use super::rigid::{angular_rates, Pose};
+use crate::case::expression::{named_values, Compiled, Variables};
+use crate::case::PrescribedConfig;
+use crate::error::{Result, SphError};
+use crate::particles::Vector;
+use nalgebra::{Rotation3, Vector3};
+
+/// One expression of t with its first and second derivatives.
+struct Timed {
+    f: Compiled,
+    rate: Compiled,
+    rate2: Compiled,
+}
+
+impl Timed {
+    fn new(key: String, text: &str, names: &[(String, f64)]) -> Result<Self> {
+        let variables = Variables {
+            dimension: 0,
+            time: true,
+        };
+        let f = Compiled::new(key, text, names, variables)?;
+        let rate = f.time_derivative()?;
+        let rate2 = rate.time_derivative()?;
+        Ok(Self { f, rate, rate2 })
+    }
+
+    /// `(g, g', g'')` of `g = s f` at `t`, `s` the ramp with its derivatives.
+    fn at(&self, t: f64, s: [f64; 3], scratch: &mut Vec<f64>) -> [f64; 3] {
+        let f = self.f.value(&[], t, scratch);
+        let f1 = self.rate.value(&[], t, scratch);
+        let f2 = self.rate2.value(&[], t, scratch);
+        [
+            s[0] * f,
+            s[1] * f + s[0] * f1,
+            s[2] * f + 2.0 * s[1] * f1 + s[0] * f2,
+        ]
+    }
+}
+
+/// The motion of one body, from its `prescribed` table.
+pub struct PrescribedMotion<const D: usize> {
+    /// The case key of the table, `tank[0].prescribed`, for messages.
+    pub key: String,
+    /// The pivot at t = 0.
+    pub pivot: Vector<D>,
+    displacement: Vec<Timed>,
+    /// 2D: the angle (about z); 3D: the rotation vector.
+    rotation: Vec<Timed>,
+    ramp: f64,
+}
+
+impl<const D: usize> PrescribedMotion<D> {
+    /// Parses the table `key` (its lengths were checked with the case).
+    pub fn new(key: String, config: &PrescribedConfig) -> Result<Self> {
+        let variables = Variables {
+            dimension: 0,
+            time: true,
+        };
+        let names = named_values(&key, &[], config.constants.as_ref(), variables)?;
+        let timed = |name: &str, texts: &Option<Vec<String>>| -> Result<Vec<Timed>> {
+            (texts.iter().flatten().enumerate())
+                .map(|(d, text)| Timed::new(format!("{key}.{name}[{d}]"), text, &names))
+                .collect()
+        };
+        let pivot = config.pivot.as_deref().unwrap_or(&[0.0; 3]);
+        Ok(Self {
+            pivot: Vector::from_fn(|d, _| pivot[d]),
+            displacement: timed("displacement", &config.displacement)?,
+            rotation: timed("rotation", &config.rotation)?,
+            ramp: config.ramp.unwrap_or(0.0),
+            key,
+        })
+    }
+
+    /// The ramp `s = 10τ³ - 15τ⁴ + 6τ⁵`, τ = t/T, for t < T (1 after) and its two
+    /// derivatives: s' and s'' vanish at both ends, so that the motion's velocity and
+    /// acceleration start from zero and join the unramped motion without a jump (a
+    /// cosine ramp leaves an acceleration jump at t = T that rings through the water).
+    fn ramp_at(&self, t: f64) -> [f64; 3] {
+        if t >= self.ramp {
+            return [1.0, 0.0, 0.0];
+        }
+        let (tau, inv) = (t / self.ramp, 1.0 / self.ramp);
+        let rest = 1.0 - tau;
+        [
+            tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau),
+            30.0 * tau * tau * rest * rest * inv,
+            60.0 * tau * rest * (1.0 - 2.0 * tau) * inv * inv,
+        ]
+    }
+
+    /// The pose at time `t`.
+    pub fn pose(&self, t: f64) -> Pose<D> {
+        let s = self.ramp_at(t);
+        let scratch = &mut Vec::new();
+        let mut linear = [Vector::<D>::zeros(); 3];
+        for (d, e) in self.displacement.iter().enumerate() {
+            for (k, v) in e.at(t, s, scratch).into_iter().enumerate() {
+                linear[k][d] = v;
+            }
+        }
+        let mut angular = [Vector3::zeros(); 3];
+        let axes: &[usize] = if D == 2 { &[2] } else { &[0, 1, 2] };
+        for (e, &axis) in self.rotation.iter().zip(axes) {
+            for (k, v) in e.at(t, s, scratch).into_iter().enumerate() {
+                angular[k][axis] = v;
+            }
+        }
+        let (omega, alpha) = angular_rates(&angular[0], &angular[1], &angular[2]);
+        Pose {
+            pivot: self.pivot + linear[0],
+            phi: angular[0],
+            rotation: Rotation3::from_scaled_axis(angular[0]),
+            velocity: linear[1],
+            acceleration: linear[2],
+            omega,
+            alpha,
+        }
+    }
+
+    /// Refuses a motion that is not finite at the sample times `times`, or that does
+    /// not start at rest where it is built (displacement and rotation zero at t = 0).
+    pub fn check(&self, times: &[f64]) -> Result<()> {
+        let start = self.pose(0.0);
+        let moved = (start.pivot - self.pivot).norm() + start.rotation.angle();
+        if moved > 1e-9 {
+            return Err(SphError::invalid(
+                &self.key,
+                format!(
+                    "a displacement {:?} and rotation {:.3e} rad at t = 0",
+                    (start.pivot - self.pivot).as_slice(),
+                    start.rotation.angle()
+                ),
+                "a motion that starts where the case builds the body: displacement and \
+                 rotation zero at t = 0 (or a ramp)",
+            ));
+        }
+        for &t in times {
+            let p = self.pose(t);
+            let values = (p.pivot.iter().chain(&p.velocity).chain(&p.acceleration))
+                .chain(p.omega.iter().chain(&p.alpha));
+            if values.clone().any(|v| !v.is_finite()) {
+                return Err(SphError::invalid(
+                    &self.key,
+                    format!("t = {t}"),
+                    "a motion finite, with finite first and second derivatives, over the run",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn motion<const D: usize>(toml: &str) -> PrescribedMotion<D> {
+        let config: PrescribedConfig = toml::from_str(toml).unwrap();
+        PrescribedMotion::new("wall[0].prescribed".into(), &config).unwrap()
+    }
+
+    #[test]
+    fn derivatives_are_exact_and_the_ramp_is_smooth() {
+        let m = motion::<2>(
+            "pivot = [1.0, 0.5]\ndisplacement = [\"A*sin(w*t)\", \"t^2\"]\n\
+             rotation = [\"0.1*t^3\"]\nconstants = { A = 0.2, w = 3.0 }",
+        );
+        let t = 0.7;
+        let p = m.pose(t);
+        let (a, w) = (0.2, 3.0);
+        let close = |x: f64, y: f64| (x - y).abs() < 1e-13 * (1.0 + y.abs());
+        assert!(close(p.pivot[0], 1.0 + a * (w * t).sin()) && close(p.pivot[1], 0.5 + t * t));
+        assert!(close(p.velocity[0], a * w * (w * t).cos()) && close(p.velocity[1], 2.0 * t));
+        assert!(close(p.acceleration[0], -a * w * w * (w * t).sin()));
+        assert!(close(p.acceleration[1], 2.0));
+        assert!(close(p.omega[2], 0.3 * t * t) && close(p.alpha[2], 0.6 * t));
+        assert!(close(p.rotation.angle(), 0.1 * t.powi(3)));
+        // with a ramp of 1 s the motion and its first two derivatives start at zero and
+        // join the unramped motion continuously
+        let m = motion::<2>("displacement = [\"1 + t\", \"0\"]\nramp = 1.0");
+        let p = m.pose(0.0);
+        assert!(p.pivot.norm() == 0.0 && p.velocity.norm() == 0.0 && p.acceleration.norm() == 0.0);
+        assert!(close(m.pose(0.5).pivot[0], 0.5 * 1.5));
+        let (before, after) = (m.pose(1.0 - 1e-9), m.pose(1.0 + 1e-9));
+        assert!((before.velocity - after.velocity).norm() < 1e-7);
+        assert!((before.acceleration - after.acceleration).norm() < 1e-6);
+        assert!(m.check(&[0.0, 0.5, 2.0]).is_ok());
+    }
+
+    #[test]
+    fn motions_that_jump_or_blow_up_are_refused() {
+        let jump = motion::<2>("displacement = [\"1 + t\", \"0\"]");
+        let e = jump.check(&[1.0]).unwrap_err().to_string();
+        assert!(
+            e.starts_with("wall[0].prescribed = a displacement [1.0, 0.0]"),
+            "{e}"
+        );
+        let blow = motion::<3>("rotation = [\"0\", \"0\", \"t/(t - 1)\"]\npivot = [0, 0, 0]");
+        let e = blow.check(&[0.5, 1.0]).unwrap_err().to_string();
+        assert!(e.contains("t = 1") && e.contains("finite"), "{e}");
+    }
+}

@@ -34,6 +34,9 @@ fn describe<const D: usize>(case: &Case, ranks: Option<u32>) -> Result<(String, 
     if let Some(open) = sim.open_boundaries() {
         report.push_str(&open.describe(sim.particles()));
     }
+    if let Some(motions) = sim.motions() {
+        report.push_str(&motions.describe(case.time.end));
+    }
     if let Some(ranks) = ranks {
         let (p, domain) = (sim.particles(), sim.domain());
         let split = Decomposition::bisect(p, domain, ranks as usize);

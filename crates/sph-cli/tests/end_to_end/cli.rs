@@ -13,6 +13,7 @@ fn every_example_passes_check() {
         "dam_break_3d",
         "hydrostatic_2d",
         "taylor_green_2d",
+        "wedge_entry_2d",
     ] {
         let out = cli(&["check", &example(&format!("{name}.toml"))]);
         assert!(
@@ -78,6 +79,32 @@ fn bad_input_gives_one_clear_line_and_no_panic() {
 }
 
 /// `check` reports what each region built: the water wedge (a polygon) and its floor.
+/// The shaken tank moves by A(1 - cos ωt) after its ramp, A ω² = g/2: at most 2A up, at
+/// A ω = 0.78 m/s and (within the ramp's overshoot) g/2 = 4.9 m/s².
+#[test]
+fn check_reports_how_far_and_fast_a_body_moves() {
+    let out = cli(&["check", &example("validation/shaking_tank.toml")]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let line = (text.lines())
+        .find(|l| l.starts_with("motion of tank[0]: "))
+        .unwrap_or_else(|| panic!("{text}"));
+    let numbers: Vec<f64> = (line.split_whitespace())
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    let (moved, speed, accel) = (numbers[0], numbers[2], numbers[3]);
+    assert!((moved - 2.0 * 0.12424).abs() < 1e-3, "{line}");
+    assert!(
+        (speed - 0.12424 * std::f64::consts::TAU).abs() < 0.01,
+        "{line}"
+    );
+    assert!(accel > 4.9 && accel < 5.5, "{line}");
+}
+
 #[test]
 fn check_reports_each_region_and_the_closest_fluid_to_a_wall() {
     let out = cli(&["check", &example("validation/water_wedge.toml")]);

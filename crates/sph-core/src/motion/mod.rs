@@ -74,6 +74,33 @@ impl<const D: usize> Motions<D> {
         Ok((!moving.is_empty()).then_some(Self { bodies: moving }))
     }
 
+    /// One line per moving body for `sph-cli check`: how far its pivot goes and how far
+    /// it turns over `[0, end]`, and its walls' largest speed and acceleration (sampled
+    /// at the corners of its initial bounding box), to catch a unit slip before a run.
+    pub fn describe(&self, end: f64) -> String {
+        let mut text = String::new();
+        for body in &self.bodies {
+            let (mut moved, mut turned, mut speed, mut accel) =
+                (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+            for t in sample_times(end) {
+                let pose = body.motion.pose(t);
+                moved = moved.max((pose.pivot - body.motion.pivot).norm());
+                turned = turned.max(pose.phi.norm());
+                for r0 in body.corners() {
+                    let (_, u, a) = pose.point(&r0);
+                    (speed, accel) = (speed.max(u.norm()), accel.max(a.norm()));
+                }
+            }
+            let region = body.motion.key.trim_end_matches(".prescribed");
+            text += &format!(
+                "motion of {region}: over the run the pivot moves up to {moved:.4e} m and \
+                 turns up to {turned:.4e} rad; its walls reach {speed:.4e} m/s and \
+                 {accel:.4e} m/s²\n"
+            );
+        }
+        text
+    }
+
     /// Every moving body's pose at time `t`, in case order.
     pub fn poses(&self, t: f64) -> Vec<Pose<D>> {
         self.bodies.iter().map(|b| b.motion.pose(t)).collect()
@@ -114,19 +141,11 @@ impl<const D: usize> Moving<D> {
     /// corners of the body's initial bounding box (which hold the body in every pose)
     /// inside the domain along its open directions.
     fn check(&self, end: f64, domain: &Domain<D>) -> Result<()> {
-        let times: Vec<f64> = (0..=SAMPLES)
-            .map(|k| end * k as f64 / SAMPLES as f64)
-            .collect();
+        let times = sample_times(end);
         self.motion.check(&times)?;
-        let (lo, hi) = (self.offsets.iter()).fold(
-            (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN)),
-            |(lo, hi), r| (lo.inf(r), hi.sup(r)),
-        );
         for &t in &times {
             let pose = self.motion.pose(t);
-            for corner in 0..1usize << D {
-                let r0 =
-                    Vector::<D>::from_fn(|d, _| if corner >> d & 1 == 0 { lo[d] } else { hi[d] });
+            for r0 in self.corners() {
                 let (x, _, _) = pose.point(&r0);
                 if domain.escaped(&x) {
                     return Err(SphError::invalid(
@@ -146,6 +165,26 @@ impl<const D: usize> Moving<D> {
         }
         Ok(())
     }
+
+    /// The corners of the body's initial bounding box, from the pivot: in every pose
+    /// they hold the body, and bound its points' distance from any axis through the
+    /// pivot.
+    fn corners(&self) -> Vec<Vector<D>> {
+        let (lo, hi) = (self.offsets.iter()).fold(
+            (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN)),
+            |(lo, hi), r| (lo.inf(r), hi.sup(r)),
+        );
+        (0..1usize << D)
+            .map(|c| Vector::<D>::from_fn(|d, _| if c >> d & 1 == 0 { lo[d] } else { hi[d] }))
+            .collect()
+    }
+}
+
+/// [`SAMPLES`] + 1 times spread evenly over `[0, end]`.
+fn sample_times(end: f64) -> Vec<f64> {
+    (0..=SAMPLES)
+        .map(|k| end * k as f64 / SAMPLES as f64)
+        .collect()
 }
 
 #[cfg(test)]

@@ -54,7 +54,7 @@ pub fn project<const D: usize>(v: &Vector3<f64>) -> Vector<D> {
     Vector::from_fn(|d, _| v[d])
 }
 
-/// The left Jacobian of the rotation vector φ (angle θ = |φ|, Φ = [φ]×):
+/// The left Jacobian of the rotation vector φ (angle θ = |φ|, Φ = `[φ]×`):
 /// `J(φ) = I + (1 - cos θ)/θ² Φ + (θ - sin θ)/θ³ Φ²`, so that the angular velocity of
 /// `R = exp(Φ)` is `Ω = J(φ) dφ/dt` (spatial frame; Ω = dφ/dt for a fixed axis).
 pub fn left_jacobian(phi: &Vector3<f64>) -> Matrix3<f64> {

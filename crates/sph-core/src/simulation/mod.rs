@@ -429,6 +429,11 @@ impl<const D: usize> Simulation<D> {
         (self.stepper.motions.as_ref()).map_or(Vec::new(), |m| m.poses(self.state.time))
     }
 
+    /// The moving bodies, when the case has any.
+    pub fn motions(&self) -> Option<&Motions<D>> {
+        self.stepper.motions.as_ref()
+    }
+
     /// The names of the moving bodies, in the order of [`Self::body_poses`].
     pub fn moving_body_names(&self) -> Vec<String> {
         crate::motion::moving_names(&self.case, &self.bodies)

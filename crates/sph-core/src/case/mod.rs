@@ -43,12 +43,22 @@ impl Case {
         Ok(case)
     }
 
-    /// Makes the shapes' relative file paths relative to `folder` (the case file's),
+    /// Makes the shapes' and motion tables' relative file paths relative to `folder`
+    /// (the case file's),
     /// so that the case reads the same files from any working folder, and again from
     /// its restart file.
     fn resolve_shape_files(&mut self, folder: &Path) {
         let folder = std::path::absolute(folder).unwrap_or_else(|_| folder.to_path_buf());
-        for file in self.shape.iter_mut().filter_map(|s| s.file.as_mut()) {
+        let shapes = (self.shape.iter_mut()).flat_map(|s| {
+            [
+                s.file.as_mut(),
+                (s.prescribed.as_mut()).and_then(|m| m.table.as_mut()),
+            ]
+        });
+        let tables = (self.tank.iter_mut().map(|t| &mut t.prescribed))
+            .chain(self.wall.iter_mut().map(|w| &mut w.prescribed))
+            .map(|m| m.as_mut().and_then(|m| m.table.as_mut()));
+        for file in shapes.chain(tables).flatten() {
             if Path::new(file.as_str()).is_relative() {
                 *file = folder.join(&*file).display().to_string();
             }

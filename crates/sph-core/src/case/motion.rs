@@ -43,6 +43,14 @@ pub struct PrescribedConfig {
     /// and its velocity and acceleration have no jump. Default: 0, no ramp.
     #[serde(default)]
     pub ramp: Option<f64>,
+    /// A CSV file of the motion instead of `displacement` and `rotation`: a column of
+    /// times \[s\] from 0 (or before) to the run's end, then one displacement column
+    /// per axis \[m\], then optionally the rotation (2D the angle, 3D the rotation vector,
+    /// \[rad\]); comma- or space-separated, `#` comments, an optional header line.
+    /// Each column is interpolated by a natural cubic spline (continuous velocity and
+    /// acceleration). A relative path is taken from the case file's folder.
+    #[serde(default)]
+    pub table: Option<String>,
     /// Named values the expressions may use (besides `t`, `PI` and `π`).
     #[serde(default)]
     pub constants: Option<BTreeMap<String, f64>>,

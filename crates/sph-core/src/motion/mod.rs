@@ -1,5 +1,5 @@
 //! Bodies that move: wall regions driven by a prescribed rigid motion
-//! ([`prescribed`]), placed with their velocity and acceleration ([`rigid`]) at the
+//! ([`prescribed`]: expressions, or tables through [`table`]), placed with their velocity and acceleration ([`rigid`]) at the
 //! time of every force evaluation, so that the fluid sees them where they are within
 //! each stage of the integrator.
 //!
@@ -10,6 +10,7 @@
 
 pub mod prescribed;
 pub mod rigid;
+pub mod table;
 
 use crate::boundary::bodies::Body;
 use crate::case::{Case, MotionChoice};
@@ -55,7 +56,7 @@ impl<const D: usize> Motions<D> {
             let (MotionChoice::Prescribed, Some(table)) = (motion, table) else {
                 continue;
             };
-            let motion = PrescribedMotion::new(format!("{key}.prescribed"), table)?;
+            let motion = PrescribedMotion::new(format!("{key}.prescribed"), table, case.time.end)?;
             let ids = body.ids.clone();
             let mut offsets = vec![Vector::zeros(); ids.len()];
             for (x, &id) in particles.x.iter().zip(&particles.id) {

@@ -3,21 +3,24 @@
 //! optional cosine ramp.
 
 use super::rigid::{angular_rates, Pose};
+use super::table::{self, Spline};
 use crate::case::expression::{named_values, Compiled, Variables};
 use crate::case::PrescribedConfig;
 use crate::error::{Result, SphError};
 use crate::particles::Vector;
 use nalgebra::{Rotation3, Vector3};
+use std::path::Path;
 
-/// One expression of t with its first and second derivatives.
-struct Timed {
-    f: Compiled,
-    rate: Compiled,
-    rate2: Compiled,
+/// One component of a motion as a function of t, with its first and second
+/// derivatives: an expression differentiated exactly, or a column of a table.
+enum Signal {
+    /// `f`, `f'`, `f''` (boxed: a parsed expression is large).
+    Expression(Box<[Compiled; 3]>),
+    Table(Spline),
 }
 
-impl Timed {
-    fn new(key: String, text: &str, names: &[(String, f64)]) -> Result<Self> {
+impl Signal {
+    fn expression(key: String, text: &str, names: &[(String, f64)]) -> Result<Self> {
         let variables = Variables {
             dimension: 0,
             time: true,
@@ -25,14 +28,19 @@ impl Timed {
         let f = Compiled::new(key, text, names, variables)?;
         let rate = f.time_derivative()?;
         let rate2 = rate.time_derivative()?;
-        Ok(Self { f, rate, rate2 })
+        Ok(Self::Expression(Box::new([f, rate, rate2])))
     }
 
     /// `(g, g', g'')` of `g = s f` at `t`, `s` the ramp with its derivatives.
     fn at(&self, t: f64, s: [f64; 3], scratch: &mut Vec<f64>) -> [f64; 3] {
-        let f = self.f.value(&[], t, scratch);
-        let f1 = self.rate.value(&[], t, scratch);
-        let f2 = self.rate2.value(&[], t, scratch);
+        let [f, f1, f2] = match self {
+            Signal::Expression(f) => [
+                f[0].value(&[], t, scratch),
+                f[1].value(&[], t, scratch),
+                f[2].value(&[], t, scratch),
+            ],
+            Signal::Table(spline) => spline.at(t),
+        };
         [
             s[0] * f,
             s[1] * f + s[0] * f1,
@@ -47,33 +55,86 @@ pub struct PrescribedMotion<const D: usize> {
     pub key: String,
     /// The pivot at t = 0.
     pub pivot: Vector<D>,
-    displacement: Vec<Timed>,
+    displacement: Vec<Signal>,
     /// 2D: the angle (about z); 3D: the rotation vector.
-    rotation: Vec<Timed>,
+    rotation: Vec<Signal>,
     ramp: f64,
 }
 
 impl<const D: usize> PrescribedMotion<D> {
-    /// Parses the table `key` (its lengths were checked with the case).
-    pub fn new(key: String, config: &PrescribedConfig) -> Result<Self> {
-        let variables = Variables {
-            dimension: 0,
-            time: true,
-        };
-        let names = named_values(&key, &[], config.constants.as_ref(), variables)?;
-        let timed = |name: &str, texts: &Option<Vec<String>>| -> Result<Vec<Timed>> {
-            (texts.iter().flatten().enumerate())
-                .map(|(d, text)| Timed::new(format!("{key}.{name}[{d}]"), text, &names))
-                .collect()
+    /// Parses the table `key` (its lengths were checked with the case), reading its
+    /// `table` file for a run that ends at `end`.
+    pub fn new(key: String, config: &PrescribedConfig, end: f64) -> Result<Self> {
+        let (displacement, rotation) = match &config.table {
+            Some(file) => Self::columns(&key, config, Path::new(file), end)?,
+            None => Self::expressions(&key, config)?,
         };
         let pivot = config.pivot.as_deref().unwrap_or(&[0.0; 3]);
         Ok(Self {
             pivot: Vector::from_fn(|d, _| pivot[d]),
-            displacement: timed("displacement", &config.displacement)?,
-            rotation: timed("rotation", &config.rotation)?,
+            displacement,
+            rotation,
             ramp: config.ramp.unwrap_or(0.0),
             key,
         })
+    }
+
+    /// The displacement and rotation expressions of the table `key`.
+    fn expressions(key: &str, config: &PrescribedConfig) -> Result<(Vec<Signal>, Vec<Signal>)> {
+        let variables = Variables {
+            dimension: 0,
+            time: true,
+        };
+        let names = named_values(key, &[], config.constants.as_ref(), variables)?;
+        let signals = |name: &str, texts: &Option<Vec<String>>| -> Result<Vec<Signal>> {
+            (texts.iter().flatten().enumerate())
+                .map(|(d, text)| Signal::expression(format!("{key}.{name}[{d}]"), text, &names))
+                .collect()
+        };
+        Ok((
+            signals("displacement", &config.displacement)?,
+            signals("rotation", &config.rotation)?,
+        ))
+    }
+
+    /// The columns of the `table` file: t, then D displacements, then the rotation
+    /// (none, or 2D one angle, 3D a rotation vector), each a spline.
+    fn columns(
+        key: &str,
+        config: &PrescribedConfig,
+        file: &Path,
+        end: f64,
+    ) -> Result<(Vec<Signal>, Vec<Signal>)> {
+        let table_key = format!("{key}.table");
+        let (t, mut columns) = table::read_columns(&table_key, file, end)?;
+        let turns = if D == 2 { 1 } else { 3 };
+        if columns.len() != D && columns.len() != D + turns {
+            return Err(SphError::invalid(
+                table_key,
+                format!(
+                    "{:?} with {} value columns",
+                    file.display().to_string(),
+                    columns.len()
+                ),
+                format!(
+                    "t and {D} displacement columns, then optionally {turns} rotation column{}",
+                    if turns == 1 { "" } else { "s" }
+                ),
+            ));
+        }
+        if columns.len() > D && config.pivot.is_none() {
+            return Err(SphError::invalid(
+                format!("{key}.pivot"),
+                "none",
+                "the point the body turns about, beside a table with rotation columns",
+            ));
+        }
+        let rotation = columns.split_off(D);
+        let spline = |y: Vec<f64>| Signal::Table(Spline::new(t.clone(), y));
+        Ok((
+            columns.into_iter().map(spline).collect(),
+            rotation.into_iter().map(spline).collect(),
+        ))
     }
 
     /// The ramp `s = 10τ³ - 15τ⁴ + 6τ⁵`, τ = t/T, for t < T (1 after) and its two
@@ -161,7 +222,7 @@ mod tests {
 
     fn motion<const D: usize>(toml: &str) -> PrescribedMotion<D> {
         let config: PrescribedConfig = toml::from_str(toml).unwrap();
-        PrescribedMotion::new("wall[0].prescribed".into(), &config).unwrap()
+        PrescribedMotion::new("wall[0].prescribed".into(), &config, 1.0).unwrap()
     }
 
     #[test]

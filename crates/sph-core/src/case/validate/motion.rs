@@ -66,6 +66,13 @@ impl Case {
     fn check_prescribed(&self, key: &str, m: &PrescribedConfig) -> Result<()> {
         let d = self.dimension;
         let key = format!("{key}.prescribed");
+        if m.table.is_some() && (m.displacement.is_some() || m.rotation.is_some()) {
+            return Err(SphError::invalid(
+                format!("{key}.table"),
+                format!("{:?}", m.table.as_deref().unwrap_or_default()),
+                "either a table or displacement and rotation expressions, not both",
+            ));
+        }
         if let Some(texts) = &m.displacement {
             count(
                 &format!("{key}.displacement"),

@@ -256,6 +256,13 @@ fn motions_agree_with_their_tables_and_the_dimension() {
             "wall[0].prescribed.pivot = none: expected the point the body turns about",
         ),
         (
+            moving_baffle(
+                "motion = \"prescribed\"",
+                Some("table = \"paddle.csv\"\ndisplacement = [\"t\", \"0\"]"),
+            ),
+            "wall[0].prescribed.table = \"paddle.csv\": expected either a table or",
+        ),
+        (
             moving_baffle("motion = \"prescribed\"", Some("ramp = -1.0")),
             "wall[0].prescribed.ramp = -1",
         ),

@@ -42,7 +42,8 @@ def keys_of(node):
 
 def schema_keys():
     """`key` for top-level keys, `table.key` for the keys of tables and arrays of tables,
-    and `table.sub.key` for arrays of tables inside a table (`[[diagnostics.sensors]]`)."""
+    and `table.sub.key` for arrays of tables inside a table (`[[diagnostics.sensors]]`)
+    and for the keys of a table inside one whose keys are all described."""
     found = set()
     for key, node in SCHEMA["properties"].items():
         table = table_of(node)
@@ -51,10 +52,15 @@ def schema_keys():
             continue
         for sub in keys_of(table):
             inner = resolve(table.get("properties", {}).get(sub, {}))
-            if inner.get("type") == "array" and table_of(inner) is not None:
-                found.update(f"{key}.{sub}.{k}" for k in keys_of(table_of(inner)))
-            else:
-                found.add(f"{key}.{sub}")
+            nested = table_of(inner)
+            if inner.get("type") == "array" and nested is not None:
+                found.update(f"{key}.{sub}.{k}" for k in keys_of(nested))
+                continue
+            found.add(f"{key}.{sub}")
+            # a table whose every key is described gets a row per key (`prescribed.pivot`)
+            props = (nested or {}).get("properties", {})
+            if props and all(v.get("description") for v in props.values()):
+                found.update(f"{key}.{sub}.{k}" for k in props)
     return found
 
 

@@ -14,6 +14,21 @@ pub enum MotionChoice {
     Fixed,
     /// A rigid motion given as functions of time: the table `prescribed` of the region.
     Prescribed,
+    /// A rigid body moved by the fluid's load, gravity and its springs: the table
+    /// `free` of the region (walls and wall shapes).
+    Free,
+}
+
+/// How one wall region moves, as the case gives it.
+#[derive(Debug, Clone)]
+pub struct BodyMotion<'a> {
+    /// The case key of the region: `tank[0]`, `wall[1]`, `shape[2]`.
+    pub key: String,
+    /// Its index in its table (`case.tank`, `case.wall` or `case.shape`).
+    pub index: usize,
+    pub motion: MotionChoice,
+    pub prescribed: Option<&'a PrescribedConfig>,
+    pub free: Option<&'a FreeConfig>,
 }
 
 /// A prescribed rigid motion: the region's particles keep their places relative to
@@ -54,4 +69,75 @@ pub struct PrescribedConfig {
     /// Named values the expressions may use (besides `t`, `PI` and `π`).
     #[serde(default)]
     pub constants: Option<BTreeMap<String, f64>>,
+}
+
+/// A free (floating) rigid body: its mass properties, constraints, initial velocity
+/// and springs. The fluid's force and moment on it are the wall pair terms that act on
+/// the fluid, reversed (see `loads`); it advances within every stage of the fluid's
+/// integrator. Mass properties not given follow from the region's geometry taken as
+/// homogeneous: `mass` or `density` sets the scale, the centroid is the centre of mass.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FreeConfig {
+    /// Mass \[kg\] (2D: per unit depth, kg/m). Give `mass` or `density`.
+    #[serde(default)]
+    pub mass: Option<f64>,
+    /// Density of the homogeneous body \[kg/m³\]: its mass is this times the region's
+    /// volume (2D: area). Give `mass` or `density`.
+    #[serde(default)]
+    pub density: Option<f64>,
+    /// Centre of mass at t = 0 \[m\]. Default: the centroid of the region.
+    #[serde(default)]
+    pub centre_of_mass: Option<Vec<f64>>,
+    /// Moment of inertia about the centre of mass \[kg m²\] (2D: per unit depth,
+    /// kg m): in 2D one value, about z; in 3D three (about x, y, z, principal axes along
+    /// them) or six (`Ixx, Iyy, Izz, Ixy, Ixz, Iyz`). Default: that of the homogeneous
+    /// region of the same mass.
+    #[serde(default)]
+    pub inertia: Option<Vec<f64>>,
+    /// A fixed point the body turns about (a hinge) \[m\]: its translation is locked and
+    /// it rotates about this point under the moments of the fluid, gravity and
+    /// springs. Default: none, the centre of mass moves freely.
+    #[serde(default)]
+    pub hinge: Option<Vec<f64>>,
+    /// Degrees of freedom held fixed: "x", "y", "z" (translation of the centre of mass
+    /// along the axis), "rx", "ry", "rz" (rotation about the axis; 2D has only "rz").
+    /// Such as `["x", "rz"]` for heave only in 2D. Default: none locked.
+    #[serde(default)]
+    pub locked: Option<Vec<String>>,
+    /// Velocity of the centre of mass (or hinge: zero) at t = 0 \[m/s\]. Default: at
+    /// rest.
+    #[serde(default)]
+    pub velocity: Option<Vec<f64>>,
+    /// Angular velocity at t = 0 \[rad/s\]: in 2D one value (about z), in 3D three.
+    /// Default: none.
+    #[serde(default)]
+    pub angular_velocity: Option<Vec<f64>>,
+    /// Linear springs with dampers from points of the body to fixed anchors (moorings).
+    #[serde(default)]
+    pub springs: Option<Vec<SpringConfig>>,
+}
+
+/// A linear spring and damper between a point fixed to a free body and a fixed
+/// anchor: along the line from the anchor to the point, tension
+/// `T = stiffness (L - rest_length) + damping dL/dt` (`L` the line's length).
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpringConfig {
+    /// Where the spring holds the body at t = 0 \[m\].
+    pub point: Vec<f64>,
+    /// The fixed end \[m\].
+    pub anchor: Vec<f64>,
+    /// Stiffness \[N/m\] (2D: per unit depth, N/m²).
+    pub stiffness: f64,
+    /// Length without tension \[m\]. Default: the length at t = 0.
+    #[serde(default)]
+    pub rest_length: Option<f64>,
+    /// Damping along the line \[N s/m\] (2D: per unit depth). Default: 0.
+    #[serde(default)]
+    pub damping: Option<f64>,
+    /// Whether the line goes slack instead of pushing (a mooring line: no force while
+    /// shorter than `rest_length`). Default: false, a spring both ways.
+    #[serde(default)]
+    pub slack: Option<bool>,
 }

@@ -2,7 +2,7 @@
 //! default. Unknown keys are rejected by serde; values are checked in
 //! [`super::validate`]. All quantities are SI.
 
-use super::motion::{MotionChoice, PrescribedConfig};
+use super::motion::{BodyMotion, FreeConfig, MotionChoice, PrescribedConfig};
 use super::open_boundaries::OpenBoundaryConfig;
 use super::shapes::{Role, ShapeConfig};
 use crate::physics::kernel::KernelChoice;
@@ -148,13 +148,16 @@ pub struct WallConfig {
     /// Name of the body in the loads' columns. Default: `wall<k>`.
     #[serde(default)]
     pub name: Option<String>,
-    /// How the region moves: "fixed" or "prescribed" (then its `prescribed` table
-    /// gives the motion). Default: "fixed".
+    /// How the region moves: "fixed", "prescribed" (then its `prescribed` table
+    /// gives the motion) or "free" (a floating body: its `free` table). Default: "fixed".
     #[serde(default)]
     pub motion: Option<MotionChoice>,
     /// The motion when `motion = "prescribed"`.
     #[serde(default)]
     pub prescribed: Option<PrescribedConfig>,
+    /// The body when `motion = "free"`.
+    #[serde(default)]
+    pub free: Option<FreeConfig>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -192,7 +195,8 @@ pub struct TankConfig {
     #[serde(default)]
     pub name: Option<String>,
     /// How the region moves: "fixed" or "prescribed" (then its `prescribed` table
-    /// gives the motion). Default: "fixed".
+    /// gives the motion); a tank does not float ("free" is for walls and shapes).
+    /// Default: "fixed".
     #[serde(default)]
     pub motion: Option<MotionChoice>,
     /// The motion when `motion = "prescribed"`.
@@ -352,25 +356,38 @@ pub struct OutputConfig {
 }
 
 impl Case {
-    /// The motion of every body (in the order of [`Self::body_names`]) as the case
-    /// key of its region (`tank[0]`, `wall[1]`, `shape[2]`), its `motion` and its
-    /// `prescribed` table.
-    pub fn body_motions(&self) -> Vec<(String, MotionChoice, Option<&PrescribedConfig>)> {
-        let tanks = (self.tank.iter().enumerate())
-            .map(|(k, t)| (format!("tank[{k}]"), t.motion, t.prescribed.as_ref()));
-        let walls = (self.wall.iter().enumerate())
-            .map(|(k, w)| (format!("wall[{k}]"), w.motion, w.prescribed.as_ref()));
+    /// The motion of every body (in the order of [`Self::body_names`]) with the case
+    /// key of its region (`tank[0]`, `wall[1]`, `shape[2]`).
+    pub fn body_motions(&self) -> Vec<BodyMotion<'_>> {
+        let tanks = (self.tank.iter().enumerate()).map(|(k, t)| BodyMotion {
+            key: format!("tank[{k}]"),
+            index: k,
+            motion: t.motion.unwrap_or_default(),
+            prescribed: t.prescribed.as_ref(),
+            free: None,
+        });
+        let walls = (self.wall.iter().enumerate()).map(|(k, w)| BodyMotion {
+            key: format!("wall[{k}]"),
+            index: k,
+            motion: w.motion.unwrap_or_default(),
+            prescribed: w.prescribed.as_ref(),
+            free: w.free.as_ref(),
+        });
         let shapes = (self.shape.iter().enumerate())
             .filter(|(_, s)| s.role == Role::Wall)
-            .map(|(k, s)| (format!("shape[{k}]"), s.motion, s.prescribed.as_ref()));
-        (tanks.chain(walls).chain(shapes))
-            .map(|(key, motion, table)| (key, motion.unwrap_or_default(), table))
-            .collect()
+            .map(|(k, s)| BodyMotion {
+                key: format!("shape[{k}]"),
+                index: k,
+                motion: s.motion.unwrap_or_default(),
+                prescribed: s.prescribed.as_ref(),
+                free: s.free.as_ref(),
+            });
+        tanks.chain(walls).chain(shapes).collect()
     }
 
     /// Whether any wall region moves.
     pub fn has_moving_bodies(&self) -> bool {
-        (self.body_motions().iter()).any(|(_, motion, _)| *motion != MotionChoice::Fixed)
+        (self.body_motions().iter()).any(|b| b.motion != MotionChoice::Fixed)
     }
 
     /// The bodies' names in build order, tanks, walls, then wall shapes, each with the

@@ -3,7 +3,7 @@
 //! lattice, a wall of dummy particles, or a hole cut out of the fluid. Its geometry is
 //! built and checked in [`crate::geometry::solid`].
 
-use super::motion::{MotionChoice, PrescribedConfig};
+use super::motion::{FreeConfig, MotionChoice, PrescribedConfig};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -128,13 +128,16 @@ pub struct ShapeConfig {
     /// Default: the shape's top.
     #[serde(default)]
     pub surface: Option<f64>,
-    /// How the wall moves (walls only): "fixed" or "prescribed" (then its `prescribed` table
-    /// gives the motion). Default: "fixed".
+    /// How the wall moves (walls only): "fixed", "prescribed" (then its `prescribed` table
+    /// gives the motion) or "free" (a floating body: its `free` table). Default: "fixed".
     #[serde(default)]
     pub motion: Option<MotionChoice>,
     /// The motion when `motion = "prescribed"`.
     #[serde(default)]
     pub prescribed: Option<PrescribedConfig>,
+    /// The body when `motion = "free"`.
+    #[serde(default)]
+    pub free: Option<FreeConfig>,
 }
 
 impl ShapeConfig {

@@ -118,15 +118,26 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
             .create("energy_budget")?
             .write_raw(&v)?;
     }
-    if !c.sensor_filters.is_empty() {
-        let v: Vec<f64> = c.sensor_filters.iter().flatten().copied().collect();
-        file.new_attr::<f64>()
-            .shape(v.len())
-            .create("sensor_filters")?
-            .write_raw(&v)?;
-    }
+    write_records(&file, "sensor_filters", &c.sensor_filters)?;
+    write_records(&file, "free_bodies", &c.free_bodies)?;
     crate::io::output::snapshot::write_creator(&file)?;
     file.close()
+}
+
+/// Fixed-length records as one flat attribute, none when there are no records.
+fn write_records<const N: usize>(
+    file: &hdf5::File,
+    name: &str,
+    records: &[[f64; N]],
+) -> hdf5::Result<()> {
+    if records.is_empty() {
+        return Ok(());
+    }
+    let v: Vec<f64> = records.iter().flatten().copied().collect();
+    file.new_attr::<f64>()
+        .shape(v.len())
+        .create(name)?
+        .write_raw(&v)
 }
 
 /// The dimension of the run stored in `path`.
@@ -263,7 +274,8 @@ impl Reader<'_> {
             },
             last_acceleration: self.attr("last_acceleration")?,
             budget: self.budget()?,
-            sensor_filters: self.sensor_filters()?,
+            sensor_filters: self.records("sensor_filters")?,
+            free_bodies: self.records("free_bodies")?,
         };
         let schedule = Schedule {
             next_snapshot: self.attr("next_snapshot")?,
@@ -275,20 +287,18 @@ impl Reader<'_> {
         Ok((checkpoint, schedule))
     }
 
-    fn sensor_filters(&self) -> Result<Vec<[f64; 4]>> {
-        let Ok(a) = self.file.attr("sensor_filters") else {
+    /// The records of [`write_records`] (none when the attribute is absent).
+    fn records<const N: usize>(&self, name: &str) -> Result<Vec<[f64; N]>> {
+        let Ok(a) = self.file.attr(name) else {
             return Ok(Vec::new());
         };
         let v: Vec<f64> = a
             .read_raw()
-            .map_err(|e| self.corrupt(format!("attribute sensor_filters ({e})")))?;
-        if !v.len().is_multiple_of(4) {
-            return Err(self.corrupt(format!(
-                "sensor_filters holds {} values, not 4 a filter",
-                v.len()
-            )));
+            .map_err(|e| self.corrupt(format!("attribute {name} ({e})")))?;
+        if !v.len().is_multiple_of(N) {
+            return Err(self.corrupt(format!("{name} holds {} values, not {N} a record", v.len())));
         }
-        Ok(v.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect())
+        Ok(v.chunks(N).map(|c| std::array::from_fn(|k| c[k])).collect())
     }
 
     fn budget(&self) -> Result<Option<EnergyBudget>> {

@@ -1,110 +1,134 @@
 //! Bodies that move: wall regions driven by a prescribed rigid motion
-//! ([`prescribed`]: expressions, or tables through [`table`]), placed with their velocity and acceleration ([`rigid`]) at the
-//! time of every force evaluation, so that the fluid sees them where they are within
-//! each stage of the integrator.
+//! ([`prescribed`]: expressions, or tables through [`table`]) or free rigid bodies
+//! moved by the fluid, gravity and springs ([`free`], mass properties from the
+//! geometry by [`mass`]), placed with their velocity and acceleration ([`rigid`]) at
+//! the time of every force evaluation, so that the fluid sees them where they are
+//! within each stage of the integrator (free bodies advance with those stages).
 //!
 //! Wall particles are not integrated: the motion sets `x`, `u` and the wall
 //! acceleration `a_w` (in [`Particles::wall_acceleration`], kept only when a body
 //! moves), which the wall model reads: the no-slip velocity `2u_w - ũ` and the pressure
 //! extrapolation's `(g - a_w)·r` term (see [`crate::boundary::walls`]).
 
+pub mod free;
+pub mod mass;
 pub mod prescribed;
 pub mod rigid;
 pub mod table;
 
-use crate::boundary::bodies::Body;
-use crate::case::{Case, MotionChoice};
+use crate::boundary::bodies::{Body, Load};
+use crate::case::{BodyMotion, Case, MotionChoice};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
+use crate::geometry::solid::Solid;
 use crate::particles::{Particles, Vector};
+use free::FreeBody;
+use mass::{Region, Solidity};
+use nalgebra::Vector3;
 use prescribed::PrescribedMotion;
 use rayon::prelude::*;
-use rigid::Pose;
+use rigid::{embed, Pose};
 use std::ops::Range;
 
 /// How many times over the run a motion is sampled when the case is built, to refuse
 /// one that is not finite or leaves the domain.
 const SAMPLES: usize = 1000;
 
+/// What moves a body.
+enum Drive<const D: usize> {
+    Prescribed(PrescribedMotion<D>),
+    Free(Box<FreeBody<D>>),
+}
+
 /// One moving body: the ids of its particles and where each sits relative to the
-/// pivot at t = 0.
+/// pivot (a free body's reference point) at t = 0.
 struct Moving<const D: usize> {
     ids: Range<u32>,
     /// `r0 = x(0) - P(0)`, by `id - ids.start`.
     offsets: Vec<Vector<D>>,
-    motion: PrescribedMotion<D>,
+    drive: Drive<D>,
+    /// The region as a homogeneous solid (free bodies only), for `sph-cli check`.
+    solidity: Option<Solidity>,
 }
 
 /// The moving bodies of a run.
 pub struct Motions<const D: usize> {
     bodies: Vec<Moving<D>>,
+    /// The fluid's density, for the draft `sph-cli check` reports.
+    rho0: f64,
 }
 
 impl<const D: usize> Motions<D> {
     /// The moving bodies of `case` (`None` when every body is fixed) from the built
-    /// particles, at their places of t = 0. Refused in one line: a motion that is not
-    /// finite over the run, does not start at rest where the body is built, or takes
-    /// a body out of the domain along an open direction.
+    /// particles at their places of t = 0, `solids` the `[[shape]]` walls' solids by
+    /// shape index. Refused in one line: a prescribed motion that is not finite over
+    /// the run, does not start at rest where the body is built, or takes a body out of
+    /// the domain along an open direction.
     pub fn of(
         case: &Case,
         bodies: &[Body],
         particles: &Particles<D>,
         domain: &Domain<D>,
+        solids: &[(usize, Solid)],
     ) -> Result<Option<Self>> {
         let mut moving = Vec::new();
-        for ((key, motion, table), body) in case.body_motions().into_iter().zip(bodies) {
-            let (MotionChoice::Prescribed, Some(table)) = (motion, table) else {
-                continue;
+        for (motion, body) in case.body_motions().into_iter().zip(bodies) {
+            let (drive, solidity) = match (motion.motion, motion.prescribed, motion.free) {
+                (MotionChoice::Prescribed, Some(table), _) => {
+                    let key = format!("{}.prescribed", motion.key);
+                    let m = PrescribedMotion::new(key, table, case.time.end)?;
+                    (Drive::Prescribed(m), None)
+                }
+                (MotionChoice::Free, _, Some(_)) => {
+                    let (body, solidity) = free_body(case, &motion, solids);
+                    (Drive::Free(Box::new(body)), Some(solidity))
+                }
+                _ => continue,
             };
-            let motion = PrescribedMotion::new(format!("{key}.prescribed"), table, case.time.end)?;
+            let pivot = drive.pivot();
             let ids = body.ids.clone();
             let mut offsets = vec![Vector::zeros(); ids.len()];
             for (x, &id) in particles.x.iter().zip(&particles.id) {
                 if ids.contains(&id) {
-                    offsets[(id - ids.start) as usize] = x - motion.pivot;
+                    offsets[(id - ids.start) as usize] = x - pivot;
                 }
             }
             let body = Moving {
                 ids,
                 offsets,
-                motion,
+                drive,
+                solidity,
             };
             body.check(case.time.end, domain)?;
             moving.push(body);
         }
-        Ok((!moving.is_empty()).then_some(Self { bodies: moving }))
+        let rho0 = case.fluid.density;
+        Ok((!moving.is_empty()).then_some(Self {
+            bodies: moving,
+            rho0,
+        }))
     }
 
-    /// One line per moving body for `sph-cli check`: how far its pivot goes and how far
-    /// it turns over `[0, end]`, and its walls' largest speed and acceleration (sampled
-    /// at the corners of its initial bounding box), to catch a unit slip before a run.
+    /// One line per moving body for `sph-cli check`: for a prescribed motion, how far
+    /// its pivot goes and how far it turns over `[0, end]`, and its walls' largest
+    /// speed and acceleration (sampled at the corners of its initial bounding box), to
+    /// catch a unit slip before a run; for a free body, its mass, centre of mass,
+    /// inertia and the draft at which it floats upright.
     pub fn describe(&self, end: f64) -> String {
         let mut text = String::new();
         for body in &self.bodies {
-            let (mut moved, mut turned, mut speed, mut accel) =
-                (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
-            for t in sample_times(end) {
-                let pose = body.motion.pose(t);
-                moved = moved.max((pose.pivot - body.motion.pivot).norm());
-                turned = turned.max(pose.phi.norm());
-                for r0 in body.corners() {
-                    let (_, u, a) = pose.point(&r0);
-                    (speed, accel) = (speed.max(u.norm()), accel.max(a.norm()));
-                }
-            }
-            let region = body.motion.key.trim_end_matches(".prescribed");
-            text += &format!(
-                "motion of {region}: over the run the pivot moves up to {moved:.4e} m and \
-                 turns up to {turned:.4e} rad; its walls reach {speed:.4e} m/s and \
-                 {accel:.4e} m/s²\n"
-            );
+            text += &match &body.drive {
+                Drive::Prescribed(m) => body.describe_motion(m, end),
+                Drive::Free(f) => describe_free(f, body.solidity.as_ref(), self.rho0),
+            };
         }
         text
     }
 
-    /// Every moving body's pose at time `t`, in case order.
+    /// Every moving body's pose at time `t` (a free body's is its current one), in
+    /// case order.
     pub fn poses(&self, t: f64) -> Vec<Pose<D>> {
-        self.bodies.iter().map(|b| b.motion.pose(t)).collect()
+        self.bodies.iter().map(|b| b.drive.pose(t)).collect()
     }
 
     /// Puts every moving body's particles where the motions have them at time `t`, with
@@ -127,30 +151,171 @@ impl<const D: usize> Motions<D> {
                 domain.wrap(x);
             });
     }
+
+    /// The free bodies, in case order.
+    pub fn free_bodies(&mut self) -> impl Iterator<Item = &mut FreeBody<D>> {
+        self.bodies.iter_mut().filter_map(|b| match &mut b.drive {
+            Drive::Free(f) => Some(f.as_mut()),
+            Drive::Prescribed(_) => None,
+        })
+    }
+
+    /// Each free body's record for a restart file, in case order.
+    pub fn free_records(&self) -> Vec<[f64; free::RECORD]> {
+        (self.bodies.iter())
+            .filter_map(|b| match &b.drive {
+                Drive::Free(f) => Some(f.record()),
+                Drive::Prescribed(_) => None,
+            })
+            .collect()
+    }
+
+    /// How many of the bodies are free.
+    pub fn free_count(&self) -> usize {
+        (self.bodies.iter())
+            .filter(|b| matches!(b.drive, Drive::Free(_)))
+            .count()
+    }
+
+    /// The free body (its index among the free bodies) each particle belongs to, for
+    /// [`crate::scheme::model::Model::wall_loads`].
+    pub fn free_owners(&self, p: &Particles<D>) -> Vec<Option<usize>> {
+        let free: Vec<&Range<u32>> = (self.bodies.iter())
+            .filter(|b| matches!(b.drive, Drive::Free(_)))
+            .map(|b| &b.ids)
+            .collect();
+        (p.id.par_iter())
+            .map(|id| free.iter().position(|ids| ids.contains(id)))
+            .collect()
+    }
+
+    /// Gives each free body the fluid's load at the current state (moments about the
+    /// origin), from which it takes its rates.
+    pub fn take_loads(&mut self, loads: &[Load<D>]) {
+        for (body, load) in self.free_bodies().zip(loads) {
+            body.take_load(load);
+        }
+    }
+
+    /// The smallest of the free bodies' own limits on Δt (infinite without any).
+    pub fn max_dt(&self) -> f64 {
+        (self.bodies.iter())
+            .filter_map(|b| match &b.drive {
+                Drive::Free(f) => Some(f.max_dt()),
+                Drive::Prescribed(_) => None,
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The free body of a region (validated `free` table) and its region as a solid.
+fn free_body<const D: usize>(
+    case: &Case,
+    motion: &BodyMotion,
+    solids: &[(usize, Solid)],
+) -> (FreeBody<D>, Solidity) {
+    let config = motion.free.expect("a free body has its table");
+    let region = match motion.key.starts_with("wall") {
+        true => {
+            let w = &case.wall[motion.index];
+            Region::Box(&w.lo, &w.hi)
+        }
+        false => {
+            let (_, solid) = (solids.iter())
+                .find(|(k, _)| *k == motion.index)
+                .expect("every wall shape has its solid");
+            Region::Solid(solid)
+        }
+    };
+    let gravity: Vector<D> = Vector::from_fn(|d, _| case.gravity()[d]);
+    let up = match gravity.norm() {
+        0.0 => Vector3::ith(D - 1, 1.0),
+        g => -embed(&gravity) / g,
+    };
+    let solidity = Solidity::of(&region, D, &up);
+    let density = config.density.unwrap_or(1.0);
+    let key = format!("{}.free", motion.key);
+    let body = FreeBody::new(key, config, solidity.guess(density), &gravity);
+    (body, solidity)
+}
+
+/// The line of `sph-cli check` for a free body.
+fn describe_free<const D: usize>(
+    f: &FreeBody<D>,
+    solidity: Option<&Solidity>,
+    rho0: f64,
+) -> String {
+    let region = f.key.trim_end_matches(".free");
+    let com = crate::domain::point_text(&rigid::project::<D>(&f.centre_of_mass));
+    let inertia = if D == 2 {
+        format!("{:.4e} kg m²/m about z", f.inertia[(2, 2)])
+    } else {
+        let i = &f.inertia;
+        format!(
+            "[{:.4e}, {:.4e}, {:.4e}; {:.4e}, {:.4e}, {:.4e}] kg m² (xx yy zz xy xz yz)",
+            i[(0, 0)],
+            i[(1, 1)],
+            i[(2, 2)],
+            i[(0, 1)],
+            i[(0, 2)],
+            i[(1, 2)]
+        )
+    };
+    let unit = if D == 2 { "kg/m" } else { "kg" };
+    let floats = match solidity.and_then(|s| s.draft(f.mass, rho0).map(|d| (d, s))) {
+        Some((draft, _)) => format!("floats upright at a draft of {draft:.4e} m"),
+        None => "is denser than the fluid: it sinks".to_string(),
+    };
+    format!(
+        "free body {region}: mass {:.4e} {unit}, centre of mass {com} m, inertia {inertia}; \
+         it {floats}\n",
+        f.mass
+    )
+}
+
+impl<const D: usize> Drive<D> {
+    /// The pivot at t = 0 (a free body's reference point).
+    fn pivot(&self) -> Vector<D> {
+        match self {
+            Drive::Prescribed(m) => m.pivot,
+            Drive::Free(f) => rigid::project(&f.reference()),
+        }
+    }
+
+    fn pose(&self, t: f64) -> Pose<D> {
+        match self {
+            Drive::Prescribed(m) => m.pose(t),
+            Drive::Free(f) => f.pose(),
+        }
+    }
 }
 
 /// The names of the moving bodies among `bodies` (the case's, in its order).
 pub fn moving_names(case: &Case, bodies: &[Body]) -> Vec<String> {
     (bodies.iter().zip(case.body_motions()))
-        .filter(|(_, (_, motion, _))| *motion != MotionChoice::Fixed)
+        .filter(|(_, m)| m.motion != MotionChoice::Fixed)
         .map(|(b, _)| b.name.clone())
         .collect()
 }
 
 impl<const D: usize> Moving<D> {
-    /// The motion sampled over `[0, end]`: finite, starting at rest, and keeping the
-    /// corners of the body's initial bounding box (which hold the body in every pose)
-    /// inside the domain along its open directions.
+    /// A prescribed motion sampled over `[0, end]`: finite, starting at rest, and
+    /// keeping the corners of the body's initial bounding box (which hold the body in
+    /// every pose) inside the domain along its open directions. A free body's motion
+    /// is not known before the run.
     fn check(&self, end: f64, domain: &Domain<D>) -> Result<()> {
+        let Drive::Prescribed(motion) = &self.drive else {
+            return Ok(());
+        };
         let times = sample_times(end);
-        self.motion.check(&times)?;
+        motion.check(&times)?;
         for &t in &times {
-            let pose = self.motion.pose(t);
+            let pose = motion.pose(t);
             for r0 in self.corners() {
                 let (x, _, _) = pose.point(&r0);
                 if domain.escaped(&x) {
                     return Err(SphError::invalid(
-                        &self.motion.key,
+                        &motion.key,
                         format!(
                             "a motion that takes the body to {} at t = {t:.6} s",
                             crate::domain::point_text(&x)
@@ -165,6 +330,26 @@ impl<const D: usize> Moving<D> {
             }
         }
         Ok(())
+    }
+
+    /// The line of `sph-cli check` for a prescribed motion.
+    fn describe_motion(&self, motion: &PrescribedMotion<D>, end: f64) -> String {
+        let (mut moved, mut turned, mut speed, mut accel) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
+        for t in sample_times(end) {
+            let pose = motion.pose(t);
+            moved = moved.max((pose.pivot - motion.pivot).norm());
+            turned = turned.max(pose.phi.norm());
+            for r0 in self.corners() {
+                let (_, u, a) = pose.point(&r0);
+                (speed, accel) = (speed.max(u.norm()), accel.max(a.norm()));
+            }
+        }
+        let region = motion.key.trim_end_matches(".prescribed");
+        format!(
+            "motion of {region}: over the run the pivot moves up to {moved:.4e} m and \
+             turns up to {turned:.4e} rad; its walls reach {speed:.4e} m/s and \
+             {accel:.4e} m/s²\n"
+        )
     }
 
     /// The corners of the body's initial bounding box, from the pivot: in every pose
@@ -204,16 +389,22 @@ mod tests {
         );
         let case = Case::from_toml_str(&text).unwrap();
         let setup = geometry::build::<2>(&case).unwrap();
-        Motions::of(&case, &setup.bodies, &setup.particles, &setup.domain)
+        Motions::of(
+            &case,
+            &setup.bodies,
+            &setup.particles,
+            &setup.domain,
+            &setup.wall_solids,
+        )
     }
 
     #[test]
     fn bodies_move_rigidly_and_stay_in_the_domain() {
         let motions = baffle("0.05*sin(PI*t)").unwrap().unwrap();
         let body = &motions.bodies[0];
-        let pose = body.motion.pose(0.5);
+        let pose = body.drive.pose(0.5);
         let (x, u, a) = pose.point(&body.offsets[0]);
-        let x0 = body.motion.pivot + body.offsets[0];
+        let x0 = body.drive.pivot() + body.offsets[0];
         assert!((x - x0 - Vector::<2>::new(0.05, 0.0)).norm() < 1e-15);
         assert!(u.norm() < 1e-15);
         let pi = std::f64::consts::PI;

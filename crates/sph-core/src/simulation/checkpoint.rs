@@ -5,6 +5,7 @@
 use super::{Counters, EnergyBudget, Simulation, State};
 use crate::case::Case;
 use crate::error::{Result, SphError};
+use crate::motion::free::RECORD;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Particles, Vector};
 
@@ -26,6 +27,8 @@ pub struct Checkpoint<const D: usize> {
     pub budget: Option<EnergyBudget>,
     /// The state of each filtered sensor's low-pass filter, in sensor order.
     pub sensor_filters: Vec<[f64; 4]>,
+    /// The state of each free body (see [`crate::motion::free::FreeBody::record`]), in case order.
+    pub free_bodies: Vec<[f64; RECORD]>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -44,6 +47,7 @@ impl<const D: usize> Simulation<D> {
             last_acceleration: self.stepper.last_acceleration,
             budget: self.budget,
             sensor_filters: self.observers.iter().filter_map(|o| o.memory()).collect(),
+            free_bodies: (self.stepper.motions.as_ref()).map_or(Vec::new(), |m| m.free_records()),
         })
     }
 
@@ -106,9 +110,17 @@ impl<const D: usize> Simulation<D> {
         if memories.next().is_some() {
             return Err(corrupt(FILTERS));
         }
-        if let Some(motions) = &sim.stepper.motions {
+        if let Some(motions) = sim.stepper.motions.as_mut() {
+            if motions.free_count() != c.free_bodies.len() {
+                return Err(corrupt("its free bodies do not match its case"));
+            }
+            for (body, record) in motions.free_bodies().zip(&c.free_bodies) {
+                body.restore(record);
+            }
             particles.keep_wall_acceleration(true);
             motions.place(&mut particles, c.time, &sim.stepper.domain);
+        } else if !c.free_bodies.is_empty() {
+            return Err(corrupt("its free bodies do not match its case"));
         }
         sim.state = State {
             particles,

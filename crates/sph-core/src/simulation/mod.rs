@@ -92,7 +92,13 @@ impl<const D: usize> Simulation<D> {
         check_inflow_speeds(&case, setup.eos.c0)?;
         let open = OpenBoundaries::of(&case, &setup.particles, &setup.domain, &setup.eos)?;
         let forcing = BodyForce::of(&case, &setup.particles)?;
-        let motions = Motions::of(&case, &setup.bodies, &setup.particles, &setup.domain)?;
+        let motions = Motions::of(
+            &case,
+            &setup.bodies,
+            &setup.particles,
+            &setup.domain,
+            &setup.wall_solids,
+        )?;
         if let Some(motions) = &motions {
             setup.particles.keep_wall_acceleration(true);
             motions.place(&mut setup.particles, 0.0, &setup.domain);

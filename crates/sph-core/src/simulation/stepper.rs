@@ -31,7 +31,7 @@ macro_rules! context {
             open: $s.open.as_ref(),
             time: $time,
             forcing: $s.forcing.as_ref(),
-            motions: $s.motions.as_ref(),
+            motions: $s.motions.as_mut(),
             halo: $s.ranks.as_ref(),
         }
     };
@@ -246,9 +246,11 @@ impl<const D: usize> Stepper<D> {
         if let (Some(b), Some(now)) = (budget.as_deref_mut(), cx.model.last_powers()) {
             b.advance(now);
         }
+        let bodies_dt = cx.motions.as_ref().map_or(f64::INFINITY, |m| m.max_dt());
         let mut dt = (self.control)
             .dt(a_max, cx.model.diffusivities())
-            .min(dt_lists);
+            .min(dt_lists)
+            .min(bodies_dt);
         let remaining = limit - state.time;
         if remaining > 0.0 && remaining < dt * (1.0 + 1e-9) {
             dt = remaining;

@@ -21,6 +21,7 @@ use crate::boundary::open::OpenBoundaries;
 use crate::distributed::Ranks;
 use crate::domain::Domain;
 use crate::forcing::BodyForce;
+use crate::motion::free::{FreeBody, Rate};
 use crate::motion::Motions;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
@@ -38,8 +39,9 @@ pub struct Context<'a, const D: usize> {
     pub time: f64,
     /// The case's body force field besides gravity, when it has one.
     pub forcing: Option<&'a BodyForce<D>>,
-    /// The moving bodies, placed at each evaluation's time, when the case has any.
-    pub motions: Option<&'a Motions<D>>,
+    /// The moving bodies, placed at each evaluation's time, when the case has any; its
+    /// free bodies take the fluid's load after each evaluation.
+    pub motions: Option<&'a mut Motions<D>>,
     /// This process's share of a split run, whose halo is refreshed before each
     /// evaluation within a step (the state at a step's start is already refreshed).
     pub halo: Option<&'a Ranks<D>>,
@@ -49,7 +51,8 @@ impl<const D: usize> Context<'_, D> {
     /// The rates at the particles' state (see [`Model::evaluate`]), with the moving
     /// bodies placed and the buffer particles of open boundaries set before (the
     /// step's start has its bodies placed already), the open boundaries held after,
-    /// and the body force at the state's time, `elapsed` after the step's start. In a split run the halo
+    /// the body force at the state's time, `elapsed` after the step's start, and the
+    /// free bodies' rates from the fluid's load on them. In a split run the halo
     /// gets its owners' state first, unless the state is the step's start (`elapsed`
     /// zero), which the step before left refreshed.
     pub fn evaluate(
@@ -62,7 +65,7 @@ impl<const D: usize> Context<'_, D> {
         if let Some(halo) = self.halo.filter(|_| elapsed > 0.0) {
             halo.refresh(p);
         }
-        if let Some(motions) = self.motions.filter(|_| elapsed > 0.0) {
+        if let Some(motions) = self.motions.as_deref().filter(|_| elapsed > 0.0) {
             motions.place(p, self.time + elapsed, self.domain);
         }
         if let Some(open) = self.open {
@@ -76,6 +79,19 @@ impl<const D: usize> Context<'_, D> {
         }
         if let Some(open) = self.open {
             open.hold(p, &mut rates.du, &mut rates.drho, &mut rates.drho_diff);
+        }
+        if let Some(motions) = self.motions.as_deref_mut().filter(|m| m.free_count() > 0) {
+            let owners = motions.free_owners(p);
+            let (n, origin) = (motions.free_count(), Vector::zeros());
+            let loads = (self.model).wall_loads(p, self.list, self.domain, &owners, n, &origin);
+            motions.take_loads(&loads);
+        }
+    }
+
+    /// Applies `f` to every free body (the integrators advance them with the fluid).
+    fn free_bodies(&mut self, f: impl FnMut(&mut FreeBody<D>)) {
+        if let Some(motions) = self.motions.as_deref_mut() {
+            motions.free_bodies().for_each(f);
         }
     }
 }
@@ -201,11 +217,20 @@ impl<const D: usize> TimeIntegrator<D> for Rk4<D> {
 
     fn advance(&mut self, dt: f64, p: &mut Particles<D>, cx: &mut Context<D>) {
         self.first_stage(p, 0.5 * dt);
+        cx.free_bodies(|b| {
+            (b.start, b.sum) = (b.state, b.rate);
+            b.state = b.start.advanced(&b.rate, 0.5 * dt);
+        });
         cx.evaluate(p, &mut self.rates, false, 0.5 * dt);
-        self.stage(p, 2.0, 0.5 * dt);
-        cx.evaluate(p, &mut self.rates, false, 0.5 * dt);
-        self.stage(p, 2.0, dt);
-        cx.evaluate(p, &mut self.rates, false, dt);
+        for c in [0.5 * dt, dt] {
+            self.stage(p, 2.0, c);
+            cx.free_bodies(|b| {
+                b.sum = b.sum + b.rate * 2.0;
+                b.state = b.start.advanced(&b.rate, c);
+            });
+            cx.evaluate(p, &mut self.rates, false, c);
+        }
+        cx.free_bodies(|b| b.state = b.start.advanced(&(b.sum + b.rate), dt / 6.0));
         let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         let (ax, au, ar, d0) = (&self.acc_x, &self.acc_u, &self.acc_rho, &self.diff0);
         let s = dt / 6.0;
@@ -251,7 +276,21 @@ impl<const D: usize> TimeIntegrator<D> for Symplectic<D> {
                 *u += r.du[i] * half;
                 *rho += (r.drho[i] + r.drho_diff[i]) * half;
             });
+        cx.free_bodies(|b| {
+            b.start = b.state;
+            b.state = b.start.advanced(&b.rate, half);
+        });
         cx.evaluate(p, &mut self.rates, true, half);
+        // V' = V + Δt A½ and X' = X + Δt (V + V')/2, as for the fluid
+        cx.free_bodies(|b| {
+            let (s, r) = (&b.start, b.rate);
+            let rate = Rate {
+                velocity: s.velocity + r.acceleration * half,
+                omega: s.omega + r.alpha * half,
+                ..r
+            };
+            b.state = b.start.advanced(&rate, dt);
+        });
         let (w0, r, kind) = (&self.w0, &self.rates, &p.kind);
         p.x.par_iter_mut()
             .zip(p.u.par_iter_mut())

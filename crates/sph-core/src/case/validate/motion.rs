@@ -2,36 +2,20 @@
 //! the table's entries have the case's dimension, and what moving bodies cannot do
 //! yet is refused in one line.
 
-use crate::case::checks::{components, non_negative};
-use crate::case::motion::{MotionChoice, PrescribedConfig};
+use crate::case::checks::{components, finite, non_negative, positive};
+use crate::case::motion::{BodyMotion, FreeConfig, MotionChoice, PrescribedConfig, SpringConfig};
 use crate::case::schema::*;
 use crate::error::{Result, SphError};
 
 impl Case {
     /// Every region's motion, then what a case with moving bodies may not combine.
     pub(super) fn validate_motions(&self) -> Result<()> {
-        for (key, motion, table) in self.body_motions() {
-            match (motion, table) {
-                (MotionChoice::Prescribed, Some(table)) => self.check_prescribed(&key, table)?,
-                (MotionChoice::Prescribed, None) => {
-                    return Err(SphError::invalid(
-                        format!("{key}.motion"),
-                        "\"prescribed\"",
-                        format!("a table {key}.prescribed giving the motion beside it"),
-                    ))
-                }
-                (MotionChoice::Fixed, Some(_)) => {
-                    return Err(SphError::invalid(
-                        format!("{key}.prescribed"),
-                        "a table",
-                        "motion = \"prescribed\" beside it (without it the region is fixed)",
-                    ))
-                }
-                (MotionChoice::Fixed, None) => {}
-            }
+        for body in self.body_motions() {
+            self.check_motion(&body)?;
         }
         for (k, s) in self.shape.iter().enumerate() {
-            if s.role != crate::case::Role::Wall && (s.motion.is_some() || s.prescribed.is_some()) {
+            let moves = s.motion.is_some() || s.prescribed.is_some() || s.free.is_some();
+            if s.role != crate::case::Role::Wall && moves {
                 return Err(SphError::invalid(
                     format!("shape[{k}].motion"),
                     format!("{:?}", s.motion.unwrap_or_default()),
@@ -60,6 +44,48 @@ impl Case {
             ));
         }
         Ok(())
+    }
+
+    /// One region's `motion` against its `prescribed` and `free` tables.
+    fn check_motion(&self, body: &BodyMotion) -> Result<()> {
+        let key = &body.key;
+        let beside = |table: &str, motion: &str| {
+            SphError::invalid(
+                format!("{key}.{table}"),
+                "a table",
+                format!("motion = \"{motion}\" beside it (without it the region is fixed)"),
+            )
+        };
+        if body.prescribed.is_some() && body.motion != MotionChoice::Prescribed {
+            return Err(beside("prescribed", "prescribed"));
+        }
+        if body.free.is_some() && body.motion != MotionChoice::Free {
+            return Err(beside("free", "free"));
+        }
+        let missing = |table: &str, motion: &str, what: &str| {
+            SphError::invalid(
+                format!("{key}.motion"),
+                format!("\"{motion}\""),
+                format!("a table {key}.{table} giving {what} beside it"),
+            )
+        };
+        match body.motion {
+            MotionChoice::Fixed => Ok(()),
+            MotionChoice::Prescribed => match body.prescribed {
+                Some(table) => self.check_prescribed(key, table),
+                None => Err(missing("prescribed", "prescribed", "the motion")),
+            },
+            MotionChoice::Free if key.starts_with("tank") => Err(SphError::invalid(
+                format!("{key}.motion"),
+                "\"free\"",
+                "\"fixed\" or \"prescribed\" (a tank holds the fluid and does not float; a \
+                 [[wall]] or a wall [[shape]] can)",
+            )),
+            MotionChoice::Free => match body.free {
+                Some(free) => check_free(&format!("{key}.free"), free, self.dimension),
+                None => Err(missing("free", "free", "its mass")),
+            },
+        }
     }
 
     /// The lengths and ranges of one `prescribed` table.
@@ -115,4 +141,143 @@ fn count(key: &str, texts: &[String], n: usize, what: &str) -> Result<()> {
         format!("{} expressions", texts.len()),
         what,
     ))
+}
+
+/// The names of the degrees of freedom a free body may lock, by dimension.
+pub(crate) fn degrees_of_freedom(d: usize) -> &'static [&'static str] {
+    if d == 2 {
+        &["x", "y", "rz"]
+    } else {
+        &["x", "y", "z", "rx", "ry", "rz"]
+    }
+}
+
+/// A free body's table: mass or density, the lengths of its vectors, an inertia that
+/// is positive definite, known and distinct locked degrees of freedom, no initial
+/// velocity along a locked one, and its springs.
+fn check_free(key: &str, f: &FreeConfig, d: usize) -> Result<()> {
+    match (f.mass, f.density) {
+        (Some(m), None) => positive(&format!("{key}.mass"), m)?,
+        (None, Some(rho)) => positive(&format!("{key}.density"), rho)?,
+        (None, None) => {
+            return Err(SphError::invalid(
+                format!("{key}.mass"),
+                "none",
+                "the body's mass, or its density",
+            ))
+        }
+        (Some(_), Some(_)) => {
+            return Err(SphError::invalid(
+                format!("{key}.density"),
+                "a density beside a mass",
+                "either the mass or the density of the body, not both",
+            ))
+        }
+    }
+    for (name, v) in [("centre_of_mass", &f.centre_of_mass), ("hinge", &f.hinge)] {
+        if let Some(v) = v {
+            components(&format!("{key}.{name}"), v, d)?;
+        }
+    }
+    if let Some(inertia) = &f.inertia {
+        check_inertia(&format!("{key}.inertia"), inertia, d)?;
+    }
+    let dofs = degrees_of_freedom(d);
+    let locked = f.locked.clone().unwrap_or_default();
+    for (k, name) in locked.iter().enumerate() {
+        if !dofs.contains(&name.as_str()) || locked[..k].contains(name) {
+            return Err(SphError::invalid(
+                format!("{key}.locked"),
+                format!("{name:?}"),
+                format!("distinct names among {dofs:?}"),
+            ));
+        }
+    }
+    let turns = if d == 2 { 1 } else { 3 };
+    let rotations = &dofs[d..];
+    if let Some(v) = &f.velocity {
+        components(&format!("{key}.velocity"), v, d)?;
+        for (axis, &speed) in dofs[..d].iter().zip(v) {
+            let held = f.hinge.is_some() || locked.iter().any(|l| l == axis);
+            if held && speed != 0.0 {
+                return Err(SphError::invalid(
+                    format!("{key}.velocity"),
+                    format!("{v:?}"),
+                    format!("no velocity along {axis}, which is held (locked or hinged)"),
+                ));
+            }
+        }
+    }
+    if let Some(w) = &f.angular_velocity {
+        let what = format!("{turns} component(s), finite");
+        if w.len() != turns || w.iter().any(|v| !v.is_finite()) {
+            return Err(SphError::invalid(
+                format!("{key}.angular_velocity"),
+                format!("{w:?}"),
+                what,
+            ));
+        }
+        for (axis, &rate) in rotations.iter().zip(w) {
+            if rate != 0.0 && locked.iter().any(|l| l == axis) {
+                return Err(SphError::invalid(
+                    format!("{key}.angular_velocity"),
+                    format!("{w:?}"),
+                    format!("no rotation about {axis}, which is locked"),
+                ));
+            }
+        }
+    }
+    for (k, spring) in f.springs.iter().flatten().enumerate() {
+        check_spring(&format!("{key}.springs[{k}]"), spring, d)?;
+    }
+    Ok(())
+}
+
+/// An inertia of the dimension's shape, symmetric positive definite.
+fn check_inertia(key: &str, v: &[f64], d: usize) -> Result<()> {
+    let expected = if d == 2 {
+        "one positive value (about z)"
+    } else {
+        "three positive values (about x, y, z) or six (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) of a \
+         positive-definite tensor"
+    };
+    let refuse = || SphError::invalid(key, format!("{v:?}"), expected);
+    let fits = if d == 2 {
+        v.len() == 1
+    } else {
+        v.len() == 3 || v.len() == 6
+    };
+    if !fits || v.iter().any(|x| !x.is_finite()) {
+        return Err(refuse());
+    }
+    let tensor = crate::motion::free::inertia_tensor(v);
+    if tensor.symmetric_eigenvalues().iter().any(|&e| e <= 0.0) {
+        return Err(refuse());
+    }
+    Ok(())
+}
+
+/// A spring's ends, stiffness, damping and rest length.
+fn check_spring(key: &str, s: &SpringConfig, d: usize) -> Result<()> {
+    components(&format!("{key}.point"), &s.point, d)?;
+    components(&format!("{key}.anchor"), &s.anchor, d)?;
+    non_negative(&format!("{key}.stiffness"), s.stiffness)?;
+    finite(&format!("{key}.stiffness"), s.stiffness)?;
+    if let Some(l) = s.rest_length {
+        non_negative(&format!("{key}.rest_length"), l)?;
+    }
+    if let Some(c) = s.damping {
+        non_negative(&format!("{key}.damping"), c)?;
+    }
+    let length = (s.point.iter().zip(&s.anchor))
+        .map(|(a, b)| (a - b).powi(2))
+        .sum::<f64>();
+    if length == 0.0 {
+        return Err(SphError::invalid(
+            format!("{key}.anchor"),
+            format!("{:?}", s.anchor),
+            "an anchor apart from the point (the line's direction is undefined)",
+        ));
+    }
+    Ok(())
 }

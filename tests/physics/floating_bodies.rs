@@ -170,3 +170,62 @@ fn a_box_of_half_the_water_density_floats_at_its_draft() {
         .fold(0.0, f64::max);
     assert!(drift < 1e-9, "{drift}");
 }
+
+/// A floating box released off its draft, restarted half-way from a restart file,
+/// continues the uninterrupted run bit for bit: the file carries the body's state
+/// and its last accelerations (which its walls' pressure uses).
+#[test]
+fn a_heaving_box_restarts_bit_for_bit() {
+    let case = example_case(
+        "floating_box_2d.toml",
+        &[
+            "particles.spacing = 0.02",
+            "time.end = 0.4",
+            "shape.0.box.lo = [0.4, 0.26]",
+            "shape.0.box.hi = [0.6, 0.36]",
+        ],
+    );
+    let whole = super::moving_bodies::assert_restarts_bit_for_bit(case, 0.2, 0.4);
+    assert!(
+        whole.body_poses()[0].pivot[1] < 0.305,
+        "the box has sunk towards its draft"
+    );
+}
+
+/// Contact between bodies is not modelled: a box twice as dense as the water sinks to
+/// the floor, and the run stops with both bodies named when its walls come within
+/// half a spacing of the tank's, instead of falling through; a box that starts
+/// overlapping the floor is refused.
+#[test]
+fn a_sinking_box_stops_the_run_at_the_floor_and_overlaps_are_refused() {
+    let case = example_case(
+        "floating_box_2d.toml",
+        &["particles.spacing = 0.02", "shape.0.free.density = 2000.0"],
+    );
+    let mut sim = Simulation::<2>::new(case).unwrap();
+    let e = loop {
+        if let Err(e) = sim.step() {
+            break e.to_string();
+        }
+        assert!(sim.time() < 2.0, "the box never reached the floor");
+    };
+    assert!(
+        e.contains("the walls of the free body shape[0] (box) reached tank[0] (tank)")
+            && e.contains("contact between bodies is not modelled"),
+        "{e}"
+    );
+    // the floor is 0.25 m below the box: it fell for about √(2·0.25/(g/2)) s or more
+    assert!(sim.time() > 0.3, "{}", sim.time());
+    let case = example_case(
+        "floating_box_2d.toml",
+        &[
+            "shape.0.box.lo = [0.4, -0.02]",
+            "shape.0.box.hi = [0.6, 0.08]",
+        ],
+    );
+    let e = Simulation::<2>::new(case).err().unwrap().to_string();
+    assert!(
+        e.starts_with("shape[0].free = a body overlapping tank[0] (tank) at the start"),
+        "{e}"
+    );
+}

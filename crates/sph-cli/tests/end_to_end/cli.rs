@@ -11,6 +11,8 @@ fn every_example_passes_check() {
         "dam_break_2d",
         "dam_break_martin_moyce_2d",
         "dam_break_3d",
+        "floating_box_2d",
+        "floating_buoy_3d",
         "hydrostatic_2d",
         "taylor_green_2d",
         "wedge_entry_2d",
@@ -103,6 +105,37 @@ fn check_reports_how_far_and_fast_a_body_moves() {
         "{line}"
     );
     assert!(accel > 4.9 && accel < 5.5, "{line}");
+}
+
+/// The floating buoy of the STL example: a 24-sided prism of radius 0.1 m and height
+/// 0.2 m at 400 kg/m³, its mass `400 V`, `V = (n/2) r² sin(2π/n) h`, and its draft `0.4 h`.
+#[test]
+fn check_reports_a_free_body_s_mass_and_draft() {
+    let out = cli(&["check", &example("floating_buoy_3d.toml")]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let line = (text.lines())
+        .find(|l| l.starts_with("free body shape[0]: "))
+        .unwrap_or_else(|| panic!("{text}"));
+    let number_after = |word: &str| -> f64 {
+        let rest = line.split(word).nth(1).unwrap_or_else(|| panic!("{line}"));
+        rest.split_whitespace()
+            .next()
+            .unwrap()
+            .trim_end_matches(',')
+            .parse()
+            .unwrap()
+    };
+    let (n, r, h) = (24.0, 0.1, 0.2);
+    let volume = 0.5 * n * r * r * (std::f64::consts::TAU / n).sin() * h;
+    let mass = number_after("mass ");
+    assert!((mass / (400.0 * volume) - 1.0).abs() < 1e-3, "{line}");
+    let draft = number_after("draft of ");
+    assert!((draft / (0.4 * h) - 1.0).abs() < 1e-3, "{line}");
 }
 
 #[test]

@@ -10,6 +10,7 @@
 //! moves), which the wall model reads: the no-slip velocity `2u_w - ũ` and the pressure
 //! extrapolation's `(g - a_w)·r` term (see [`crate::boundary::walls`]).
 
+pub mod contact;
 pub mod free;
 pub mod mass;
 pub mod prescribed;
@@ -54,6 +55,8 @@ struct Moving<const D: usize> {
 /// The moving bodies of a run.
 pub struct Motions<const D: usize> {
     bodies: Vec<Moving<D>>,
+    /// Every body's ids and name (`shape[0] (box)`), for contacts.
+    names: Vec<(Range<u32>, String)>,
     /// The fluid's density, for the draft `sph-cli check` reports.
     rho0: f64,
 }
@@ -72,7 +75,9 @@ impl<const D: usize> Motions<D> {
         solids: &[(usize, Solid)],
     ) -> Result<Option<Self>> {
         let mut moving = Vec::new();
+        let mut names = Vec::new();
         for (motion, body) in case.body_motions().into_iter().zip(bodies) {
+            names.push((body.ids.clone(), format!("{} ({})", motion.key, body.name)));
             let (drive, solidity) = match (motion.motion, motion.prescribed, motion.free) {
                 (MotionChoice::Prescribed, Some(table), _) => {
                     let key = format!("{}.prescribed", motion.key);
@@ -102,11 +107,37 @@ impl<const D: usize> Motions<D> {
             body.check(case.time.end, domain)?;
             moving.push(body);
         }
-        let rho0 = case.fluid.density;
-        Ok((!moving.is_empty()).then_some(Self {
+        let motions = Self {
             bodies: moving,
-            rho0,
-        }))
+            names,
+            rho0: case.fluid.density,
+        };
+        if let Some(t) = motions.touch(particles, 0.5 * case.dx()) {
+            return Err(SphError::invalid(
+                format!("{}.free", t.free.split(' ').next().unwrap_or_default()),
+                format!(
+                    "a body overlapping {} at the start (walls {:.4e} m apart near {})",
+                    t.other,
+                    t.distance,
+                    crate::domain::point_text(&t.position)
+                ),
+                "bodies apart at the start: contact between bodies is not modelled",
+            ));
+        }
+        Ok((!motions.bodies.is_empty()).then_some(motions))
+    }
+
+    /// Where a free body's walls come within `gap` of another body's, if anywhere (see
+    /// [`contact`]).
+    pub fn touch(&self, p: &Particles<D>, gap: f64) -> Option<contact::Touch<D>> {
+        let free: Vec<(Range<u32>, String)> = (self.bodies.iter())
+            .filter(|b| matches!(b.drive, Drive::Free(_)))
+            .filter_map(|b| self.names.iter().find(|(ids, _)| *ids == b.ids).cloned())
+            .collect();
+        if free.is_empty() {
+            return None;
+        }
+        contact::first_touch(p, &free, &self.names, gap)
     }
 
     /// One line per moving body for `sph-cli check`: for a prescribed motion, how far

@@ -30,6 +30,9 @@ use crate::scheme::model::{
 };
 use rayon::prelude::*;
 
+/// Particles per block of the wall loads' sum, whose blocks are added in order.
+const LOAD_BLOCK: usize = 4096;
+
 /// A fully resolved scheme: kernel `K`, density diffusion `Df`, viscosity `V`.
 pub struct Scheme<const D: usize, K, Df, V> {
     pub kernel: K,
@@ -452,12 +455,14 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         self.prepare(particles, list, domain);
         let p: &Particles<D> = particles;
         let k = self.viscosity.k();
-        (0..p.len())
+        // fixed blocks summed in order: the same bits on any number of threads (a
+        // free body's motion, and so the run, depends on them)
+        let blocks: Vec<Vec<Load<D>>> = (0..p.len().div_ceil(LOAD_BLOCK))
             .into_par_iter()
-            .filter(|&i| p.kind[i] == Kind::Fluid)
-            .fold(
-                || vec![Load::default(); bodies],
-                |mut loads, i| {
+            .map(|b| {
+                let mut loads = vec![Load::default(); bodies];
+                let range = b * LOAD_BLOCK..((b + 1) * LOAD_BLOCK).min(p.len());
+                for i in range.filter(|&i| p.kind[i] == Kind::Fluid) {
                     let (pi, scale) = (p.p[i], p.mass[i] / p.rho[i]);
                     let lone = !self.fluid_in_reach(i, p, list, domain);
                     let pi_pair = self.pair_pressure(i, pi);
@@ -477,13 +482,13 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
                         let arm = domain.separation(&p.x[w.j], centre);
                         loads[b].add_pair(w.grad_w * (pair * scale), viscous, &arm);
                     }
-                    loads
-                },
-            )
-            .reduce(
-                || vec![Load::default(); bodies],
-                |a, b| a.into_iter().zip(b).map(|(x, y)| x + y).collect(),
-            )
+                }
+                loads
+            })
+            .collect();
+        (blocks.into_iter()).fold(vec![Load::default(); bodies], |a, b| {
+            a.into_iter().zip(b).map(|(x, y)| x + y).collect()
+        })
     }
 
     fn has_diffusion(&self) -> bool {

@@ -270,7 +270,31 @@ impl<const D: usize> Stepper<D> {
         if let Some(b) = budget {
             b.pending = dt;
         }
+        self.check_contact(state)?;
         self.check_stability(state)
+    }
+
+    /// Stops a run whose free body reaches into another body (see
+    /// [`crate::motion::contact`]).
+    fn check_contact(&self, state: &State<D>) -> Result<()> {
+        let Some(touch) =
+            (self.motions.as_ref()).and_then(|m| m.touch(&state.particles, 0.5 * self.dx))
+        else {
+            return Ok(());
+        };
+        Err(SphError::Unstable {
+            time: state.time,
+            step: state.counters.steps,
+            particle: touch.particle,
+            position: format!("{:?}", touch.position.as_slice()),
+            reason: format!(
+                "the walls of the free body {} reached {} ({:.2} spacings apart): contact \
+                 between bodies is not modelled",
+                touch.free,
+                touch.other,
+                touch.distance / self.dx
+            ),
+        })
     }
 
     /// The shift of the last step (δ+-SPH), and tensile control from the same free

@@ -277,3 +277,82 @@ fn motions_agree_with_their_tables_and_the_dimension() {
         assert!(e.starts_with(start), "{e}\nexpected to start with: {start}");
     }
 }
+
+/// The minimal case with a free `[[wall]]` baffle, `table` its `[wall.free]` table.
+fn free_baffle(table: &str) -> String {
+    moving_baffle("motion = \"free\"", None) + "[wall.free]\n" + table + "\n"
+}
+
+#[test]
+fn free_bodies_need_a_mass_and_consistent_constraints() {
+    let ok = free_baffle(
+        "density = 500.0\nlocked = [\"x\", \"rz\"]\nvelocity = [0.0, 0.1]\n\
+         [[wall.free.springs]]\npoint = [0.35, 0.1]\nanchor = [0.35, 0.5]\nstiffness = 100.0",
+    );
+    assert!(Case::from_toml_str(&ok).is_ok(), "{}", error_of(&ok));
+    let refused = [
+        (
+            moving_baffle("motion = \"free\"", None),
+            "wall[0].motion = \"free\": expected a table wall[0].free giving its mass",
+        ),
+        (
+            moving_baffle("", None) + "[wall.free]\nmass = 1.0\n",
+            "wall[0].free = a table: expected motion = \"free\" beside it",
+        ),
+        (
+            free_baffle("locked = [\"x\"]"),
+            "wall[0].free.mass = none: expected the body's mass, or its density",
+        ),
+        (
+            free_baffle("mass = 1.0\ndensity = 500.0"),
+            "wall[0].free.density = a density beside a mass: expected either",
+        ),
+        (free_baffle("mass = -1.0"), "wall[0].free.mass = -1"),
+        (
+            free_baffle("mass = 1.0\ninertia = [0.0]"),
+            "wall[0].free.inertia = [0.0]: expected one positive value (about z)",
+        ),
+        (
+            free_baffle("mass = 1.0\nlocked = [\"z\"]"),
+            "wall[0].free.locked = \"z\": expected distinct names among [\"x\", \"y\", \"rz\"]",
+        ),
+        (
+            free_baffle("mass = 1.0\nlocked = [\"x\", \"x\"]"),
+            "wall[0].free.locked = \"x\": expected distinct names",
+        ),
+        (
+            free_baffle("mass = 1.0\nlocked = [\"y\"]\nvelocity = [0.0, 1.0]"),
+            "wall[0].free.velocity = [0.0, 1.0]: expected no velocity along y, which is held",
+        ),
+        (
+            free_baffle("mass = 1.0\nhinge = [0.35, 0.1]\nvelocity = [1.0, 0.0]"),
+            "wall[0].free.velocity = [1.0, 0.0]: expected no velocity along x, which is held",
+        ),
+        (
+            free_baffle("mass = 1.0\nlocked = [\"rz\"]\nangular_velocity = [2.0]"),
+            "wall[0].free.angular_velocity = [2.0]: expected no rotation about rz",
+        ),
+        (
+            free_baffle("mass = 1.0\nangular_velocity = [1.0, 2.0, 3.0]"),
+            "wall[0].free.angular_velocity = [1.0, 2.0, 3.0]: expected 1 component(s)",
+        ),
+        (
+            free_baffle(
+                "mass = 1.0\n[[wall.free.springs]]\npoint = [0.35, 0.1]\n\
+                 anchor = [0.35, 0.1]\nstiffness = 1.0",
+            ),
+            "wall[0].free.springs[0].anchor = [0.35, 0.1]: expected an anchor apart",
+        ),
+        (
+            MINIMAL.to_string() + "[[tank]]\nlo = [0.0, 0.0]\nhi = [1.0, 1.0]\nmotion = \"free\"\n",
+            "tank[1].motion = \"free\": expected \"fixed\" or \"prescribed\" (a tank",
+        ),
+    ];
+    for (text, start) in refused {
+        let e = error_of(&text);
+        assert!(e.starts_with(start), "{e}\nexpected to start with: {start}");
+    }
+    // a 3D inertia tensor that is not positive definite
+    let tensor = crate::motion::free::inertia_tensor(&[1.0, 1.0, 1.0, 2.0, 0.0, 0.0]);
+    assert!(tensor.symmetric_eigenvalues().min() < 0.0);
+}

@@ -62,7 +62,8 @@ class Reference:
         for key, node in table["properties"].items():
             inner = self.table_of(node)
             if inner is not None and self.resolve(node).get("type") == "array":
-                out.extend(self.table_rows(f"[[{name}.{key}]]", f"{name}.{key}", inner))
+                path = f"{name}.{prefix}{key}"
+                out.extend(self.table_rows(f"[[{path}]]", path, inner))
                 continue
             required = key in table.get("required", [])
             out.append(self.row(f"`{header} {prefix}{key}`", node, required, inline=inner))

@@ -43,7 +43,8 @@ def keys_of(node):
 def schema_keys():
     """`key` for top-level keys, `table.key` for the keys of tables and arrays of tables,
     and `table.sub.key` for arrays of tables inside a table (`[[diagnostics.sensors]]`)
-    and for the keys of a table inside one whose keys are all described."""
+    and for the keys of a table inside one whose keys are all described (and of the
+    arrays of tables in it: `wall.free.springs.point`)."""
     found = set()
     for key, node in SCHEMA["properties"].items():
         table = table_of(node)
@@ -60,7 +61,11 @@ def schema_keys():
             # a table whose every key is described gets a row per key (`prescribed.pivot`)
             props = (nested or {}).get("properties", {})
             if props and all(v.get("description") for v in props.values()):
-                found.update(f"{key}.{sub}.{k}" for k in props)
+                for k, v in props.items():
+                    # an array of tables in it gets its own rows (`[[wall.free.springs]]`)
+                    deeper = table_of(resolve(v)) if resolve(v).get("type") == "array" else None
+                    keys = [f".{d}" for d in keys_of(deeper)] if deeper is not None else [""]
+                    found.update(f"{key}.{sub}.{k}{d}" for d in keys)
     return found
 
 

@@ -456,3 +456,20 @@ def test_prescribed_motion_moves_the_walls_and_reports_the_body():
     np.testing.assert_allclose(np.mod(moved[on_plate, 0] - shift + 0.1, 0.2) - 0.1, 0.0, atol=1e-12)
     assert np.all(moved[~on_plate] == 0.0)
     np.testing.assert_allclose(sim.velocities[wall][on_plate, 0], u_amp * np.cos(omega * 0.3), rtol=1e-12)
+
+
+def test_a_free_body_falls_onto_the_water_and_reports_its_state():
+    # the floating box released 2 cm above its draft: it falls and is caught by the water
+    case = example("floating_box_2d", particles__spacing=0.02)
+    case["shape"][0]["box"] = {"lo": [0.4, 0.27], "hi": [0.6, 0.37]}
+    sim = ds.Simulation(case)
+    start = sim.body_motions()["box"]
+    np.testing.assert_allclose(start["position"], [0.5, 0.32], atol=1e-9)
+    assert np.all(start["velocity"] == 0.0)
+    sim.run(until=0.1)
+    box = sim.body_motions()["box"]
+    # 3 cm of its 5 cm draft under water: the net weight, 2/5 of its weight, pulls it
+    # down at less than (2/5) g (the water's added mass slows it), to t = 0.1 s
+    assert -0.5 * 0.4 * 9.81 * 0.1**2 < box["position"][1] - 0.32 < -0.002
+    assert -0.4 * 9.81 * 0.1 < box["velocity"][1] < -0.02
+    assert abs(box["position"][0] - 0.5) < 1e-9 and abs(box["rotation"][0]) < 1e-9

@@ -83,18 +83,24 @@ fn bad_input_gives_one_clear_line_and_no_panic() {
 /// `check` reports what each region built: the water wedge (a polygon) and its floor.
 /// The shaken tank moves by A(1 - cos ωt) after its ramp, A ω² = g/2: at most 2A up, at
 /// A ω = 0.78 m/s and (within the ramp's overshoot) g/2 = 4.9 m/s².
-#[test]
-fn check_reports_how_far_and_fast_a_body_moves() {
-    let out = cli(&["check", &example("validation/shaking_tank.toml")]);
+/// The line of `sph-cli check` on the example `name` that starts with `start`.
+fn check_line(name: &str, start: &str) -> String {
+    let out = cli(&["check", &example(name)]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let line = (text.lines())
-        .find(|l| l.starts_with("motion of tank[0]: "))
-        .unwrap_or_else(|| panic!("{text}"));
+    (text.lines())
+        .find(|l| l.starts_with(start))
+        .unwrap_or_else(|| panic!("{text}"))
+        .to_string()
+}
+
+#[test]
+fn check_reports_how_far_and_fast_a_body_moves() {
+    let line = check_line("validation/shaking_tank.toml", "motion of tank[0]: ");
     let numbers: Vec<f64> = (line.split_whitespace())
         .filter_map(|w| w.parse().ok())
         .collect();
@@ -111,16 +117,7 @@ fn check_reports_how_far_and_fast_a_body_moves() {
 /// 0.2 m at 400 kg/m³, its mass `400 V`, `V = (n/2) r² sin(2π/n) h`, and its draft `0.4 h`.
 #[test]
 fn check_reports_a_free_body_s_mass_and_draft() {
-    let out = cli(&["check", &example("floating_buoy_3d.toml")]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let line = (text.lines())
-        .find(|l| l.starts_with("free body shape[0]: "))
-        .unwrap_or_else(|| panic!("{text}"));
+    let line = check_line("floating_buoy_3d.toml", "free body shape[0]: ");
     let number_after = |word: &str| -> f64 {
         let rest = line.split(word).nth(1).unwrap_or_else(|| panic!("{line}"));
         rest.split_whitespace()

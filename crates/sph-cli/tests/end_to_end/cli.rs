@@ -1,57 +1,9 @@
-//! End-to-end behaviour of the `sph-cli` binary: checks, errors, output safety and
+//! End-to-end behaviour of the `sph-cli` binary: errors, output safety, runs and
 //! the stability guard.
 
 use crate::common::{cli, cli_within, example, scratch, small_case};
 use std::path::Path;
 use std::time::Duration;
-
-#[test]
-fn every_example_passes_check() {
-    for name in [
-        "dam_break_2d",
-        "dam_break_martin_moyce_2d",
-        "dam_break_3d",
-        "floating_box_2d",
-        "floating_buoy_3d",
-        "hydrostatic_2d",
-        "taylor_green_2d",
-        "wedge_entry_2d",
-    ] {
-        let out = cli(&["check", &example(&format!("{name}.toml"))]);
-        assert!(
-            out.status.success(),
-            "{name}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-}
-
-/// `check --ranks P` splits the 2D dam break's 5000 fluid particles among P processes:
-/// one line per process whose fluid counts add up to the case's, and the imbalance;
-/// `--ranks 0` is refused.
-#[test]
-fn check_reports_the_split_among_processes() {
-    let out = cli(&["check", &example("dam_break_2d.toml"), "--ranks", "3"]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let fluid: Vec<usize> = text
-        .lines()
-        .filter(|l| l.trim_start().starts_with("rank "))
-        .map(|l| {
-            let (head, _) = l.split_once(" fluid").unwrap();
-            head.rsplit(' ').next().unwrap().parse().unwrap()
-        })
-        .collect();
-    assert_eq!(fluid.len(), 3, "{text}");
-    assert_eq!(fluid.iter().sum::<usize>(), 5000, "{text}");
-    assert!(text.contains("imbalance"), "{text}");
-    let refused = cli(&["check", &example("dam_break_2d.toml"), "--ranks", "0"]);
-    assert_eq!(refused.status.code(), Some(2));
-}
 
 #[test]
 fn bad_input_gives_one_clear_line_and_no_panic() {
@@ -78,94 +30,6 @@ fn bad_input_gives_one_clear_line_and_no_panic() {
         assert!(err.lines().next().unwrap().contains(expected), "{err}");
         assert!(!err.contains("panicked"), "{err}");
     }
-}
-
-/// `check` reports what each region built: the water wedge (a polygon) and its floor.
-/// The shaken tank moves by A(1 - cos ωt) after its ramp, A ω² = g/2: at most 2A up, at
-/// A ω = 0.78 m/s and (within the ramp's overshoot) g/2 = 4.9 m/s².
-/// The line of `sph-cli check` on the example `name` that starts with `start`.
-fn check_line(name: &str, start: &str) -> String {
-    let out = cli(&["check", &example(name)]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (text.lines())
-        .find(|l| l.starts_with(start))
-        .unwrap_or_else(|| panic!("{text}"))
-        .to_string()
-}
-
-#[test]
-fn check_reports_how_far_and_fast_a_body_moves() {
-    let line = check_line("validation/shaking_tank.toml", "motion of tank[0]: ");
-    let numbers: Vec<f64> = (line.split_whitespace())
-        .filter_map(|w| w.parse().ok())
-        .collect();
-    let (moved, speed, accel) = (numbers[0], numbers[2], numbers[3]);
-    assert!((moved - 2.0 * 0.12424).abs() < 1e-3, "{line}");
-    assert!(
-        (speed - 0.12424 * std::f64::consts::TAU).abs() < 0.01,
-        "{line}"
-    );
-    assert!(accel > 4.9 && accel < 5.5, "{line}");
-}
-
-/// The floating buoy of the STL example: a 24-sided prism of radius 0.1 m and height
-/// 0.2 m at 400 kg/m³, its mass `400 V`, `V = (n/2) r² sin(2π/n) h`, and its draft `0.4 h`.
-#[test]
-fn check_reports_a_free_body_s_mass_and_draft() {
-    let line = check_line("floating_buoy_3d.toml", "free body shape[0]: ");
-    let number_after = |word: &str| -> f64 {
-        let rest = line.split(word).nth(1).unwrap_or_else(|| panic!("{line}"));
-        rest.split_whitespace()
-            .next()
-            .unwrap()
-            .trim_end_matches(',')
-            .parse()
-            .unwrap()
-    };
-    let (n, r, h) = (24.0, 0.1, 0.2);
-    let volume = 0.5 * n * r * r * (std::f64::consts::TAU / n).sin() * h;
-    let mass = number_after("mass ");
-    assert!((mass / (400.0 * volume) - 1.0).abs() < 1e-3, "{line}");
-    let draft = number_after("draft of ");
-    assert!((draft / (0.4 * h) - 1.0).abs() < 1e-3, "{line}");
-}
-
-#[test]
-fn check_reports_each_region_and_the_closest_fluid_to_a_wall() {
-    let out = cli(&["check", &example("validation/water_wedge.toml")]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    // a 45° wedge 0.5 m high at Δx = 0.005: 100 rows of 2k lattice points, k = 1..100
-    assert!(
-        text.contains("10100 fluid and 1600 wall particles"),
-        "{text}"
-    );
-    let line = |key: &str| {
-        text.lines()
-            .find(|l| l.trim_start().starts_with(key))
-            .unwrap()
-    };
-    assert!(
-        line("shape[0]").contains("10100 particles, from [-0.4975, 0.0025]"),
-        "{text}"
-    );
-    assert!(
-        line("wall[0] (floor)").contains(" 1600 particles"),
-        "{text}"
-    );
-    assert!(
-        line("closest fluid").contains("0.0050 m (1.00 Δx), shape[0] at [-0.0025, 0.0025]"),
-        "{text}"
-    );
 }
 
 /// `preview` writes the initial particles (snapshot, index) and a PNG into a run
@@ -538,58 +402,6 @@ fn a_case_that_does_not_fit_in_memory_is_refused_at_once() {
         !out.status.success() && stderr.contains("DELTASPH_MEMORY_GIB is 1.0 MiB"),
         "{stderr}"
     );
-}
-
-/// `check` warns when the run would take more than a day: gravity of 10³⁰ m/s² makes
-/// the sound speed 10¹⁶ m/s and the step 10⁻¹⁸ s.
-#[test]
-fn check_warns_of_a_run_longer_than_a_day() {
-    let dir = scratch("long_run");
-    std::fs::create_dir_all(&dir).unwrap();
-    let text = std::fs::read_to_string(example("dam_break_2d.toml"))
-        .unwrap()
-        .replace("gravity = [0.0, -9.81]", "gravity = [0.0, -1e30]");
-    let case = dir.join("case.toml");
-    std::fs::write(&case, text).unwrap();
-    let out = cli(&["check", case.to_str().unwrap()]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        stdout.contains("warning: this run would take more than a day"),
-        "{stdout}"
-    );
-    let out = cli(&["check", &example("dam_break_2d.toml")]);
-    assert!(!String::from_utf8_lossy(&out.stdout).contains("warning"));
-}
-
-/// `check` refuses what cannot be meant, in one line naming the key: a probe far
-/// outside the tank, wall layers thinner than the kernel support.
-#[test]
-fn check_refuses_unreachable_probes_and_thin_walls() {
-    let dir = scratch("check_refuses");
-    for (edit, expected) in [
-        (
-            (
-                "probes = [[3.2196, 0.12], [3.2196, 0.16]]",
-                "probes = [[3.2196, 0.12], [3.2196, 0.16], [5.0, 5.0]]",
-            ),
-            "error: diagnostics.probes[2] = [5.0, 5.0]: expected a point inside the domain",
-        ),
-        (
-            ("h_over_dx = 1.33", "h_over_dx = 2.0"),
-            "error: tank[0].layers = 3: expected at least 4 layers",
-        ),
-    ] {
-        let case = small_case(&dir, "");
-        let text = std::fs::read_to_string(&case)
-            .unwrap()
-            .replace(edit.0, edit.1);
-        std::fs::write(&case, text).unwrap();
-        let out = cli(&["check", &case]);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{err}");
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(err.starts_with(expected), "{err}");
-    }
 }
 
 /// The schema shipped for editors is the one the case types give today.

@@ -173,7 +173,8 @@ fn a_box_of_half_the_water_density_floats_at_its_draft() {
 
 /// A floating box released off its draft, restarted half-way from a restart file,
 /// continues the uninterrupted run bit for bit: the file carries the body's state
-/// and its last accelerations (which its walls' pressure uses).
+/// and its last accelerations (which its walls' pressure uses), and the energy
+/// budget's integrals and powers (the time series' budget columns agree).
 #[test]
 fn a_heaving_box_restarts_bit_for_bit() {
     let case = example_case(
@@ -183,6 +184,7 @@ fn a_heaving_box_restarts_bit_for_bit() {
             "time.end = 0.4",
             "shape.0.box.lo = [0.4, 0.26]",
             "shape.0.box.hi = [0.6, 0.36]",
+            "diagnostics.energy_budget = true",
         ],
     );
     let whole = super::moving_bodies::assert_restarts_bit_for_bit(case, 0.2, 0.4);

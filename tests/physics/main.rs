@@ -1,6 +1,7 @@
 //! The physics tests of deltasph: analytic solutions, published references and
 //! conservation laws, one module per flow or property, in one test binary (one link).
 
+mod body_energy;
 mod conservation;
 mod dam_break;
 mod dam_break_3d;

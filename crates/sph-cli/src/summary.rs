@@ -142,10 +142,22 @@ pub(crate) fn summary<const D: usize>(sim: &Simulation<D>, run: &Run) {
     );
     if let Some(b) = sim.budget() {
         println!(
-            "                ∫(P_V+P_D+P_W)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
+            "                ∫(P_V+P_D+P_W+P_M+P_B)dt = {:+.3e} J, carried out by removed particles {:+.3e} J",
             b.work(),
             b.removed_energy
         );
+        if sim.case().has_moving_bodies() {
+            println!(
+                "                of which the moving walls' work ∫P_M dt = {:+.3e} J",
+                b.work_of_moving_walls()
+            );
+        }
+        if let Some(m) = sim.motions().filter(|m| m.free_count() > 0) {
+            println!(
+                "                free bodies' energy E_b = {:.6e} J now (free_bodies_energy in the time series)",
+                m.free_energy()
+            );
+        }
         let caveats = sim.budget_caveats();
         if !caveats.is_empty() {
             println!(

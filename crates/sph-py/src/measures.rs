@@ -9,8 +9,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sph_core::Simulation;
 
-/// `kinetic`, `potential`, `internal`, `total` and `dissipated` (None without the
-/// energy budget).
+/// `kinetic`, `potential`, `internal`, `total`, `bodies` (the free bodies'), and
+/// `dissipated` and `moving_work` (None without the energy budget).
 pub(crate) fn energies<'py, const D: usize>(
     py: Python<'py>,
     s: &Simulation<D>,
@@ -21,7 +21,12 @@ pub(crate) fn energies<'py, const D: usize>(
     dict.set_item("potential", e.potential)?;
     dict.set_item("internal", e.internal)?;
     dict.set_item("total", e.total())?;
+    let bodies = s
+        .motions()
+        .map_or(0.0, sph_core::motion::Motions::free_energy);
+    dict.set_item("bodies", bodies)?;
     dict.set_item("dissipated", budget.map(|b| 0.0 - b.work()))?;
+    dict.set_item("moving_work", budget.map(|b| b.work_of_moving_walls()))?;
     Ok(dict)
 }
 

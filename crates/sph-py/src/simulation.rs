@@ -481,11 +481,15 @@ impl PySimulation {
         each!(&self.solver, s => s.wall_crossings())
     }
 
-    /// Energies of the fluid [J] (per unit depth in 2D): ``kinetic``, ``potential``,
-    /// ``internal`` (compressible, docs/theory.md §10), ``total`` (their sum) and
-    /// ``dissipated``: the energy taken out so far by viscosity, density diffusion and
-    /// the walls, -∫(P_V + P_D + P_W) dt, so that ``total + dissipated`` stays
-    /// constant; None unless the case sets ``diagnostics.energy_budget = true``.
+    /// Energies [J] (per unit depth in 2D): of the fluid ``kinetic``, ``potential``,
+    /// ``internal`` (compressible, docs/theory.md §10) and ``total`` (their sum);
+    /// ``bodies``, the free bodies' kinetic, potential and spring energy (0 without
+    /// any); ``dissipated``, the energy taken out so far by viscosity, density
+    /// diffusion, the walls and the bodies' dampers net of what moving walls put in,
+    /// -∫(P_V + P_D + P_W + P_M + P_B) dt, so that ``total + bodies + dissipated`` stays
+    /// constant; ``moving_work``, the moving walls' work on the fluid ∫P_M dt (free
+    /// bodies' walls included). The last two are None
+    /// unless the case sets ``diagnostics.energy_budget = true``.
     fn energies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         each!(&self.solver, s => measures::energies(py, s))
     }

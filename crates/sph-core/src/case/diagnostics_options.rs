@@ -16,7 +16,8 @@ pub struct DiagnosticsConfig {
     #[serde(default)]
     pub energy: bool,
     /// Also integrate the viscous, diffusive and wall powers (docs/theory.md §10), computed in
-    /// the first evaluation of each step.
+    /// the first evaluation of each step; with moving bodies the moving walls' power and
+    /// work, with free bodies their power and energy.
     #[serde(default)]
     pub energy_budget: bool,
     /// Points of Shepard-interpolated pressure, inside the domain and not buried in a

@@ -20,6 +20,7 @@ pub use guard::find_instability;
 
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
+use crate::particles::blocks::sum_in_blocks;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
 use crate::scheme::model::Model;
@@ -36,6 +37,14 @@ impl Energies {
     pub fn total(&self) -> f64 {
         self.kinetic + self.potential + self.internal
     }
+
+    fn add(self, o: Self) -> Self {
+        Self {
+            kinetic: self.kinetic + o.kinetic,
+            potential: self.potential + o.potential,
+            internal: self.internal + o.internal,
+        }
+    }
 }
 
 /// E_k, E_p and E_c of the fluid.
@@ -43,29 +52,27 @@ pub fn energies<const D: usize>(p: &Particles<D>, eos: &LinearEos, g: &Vector<D>
     energies_of(p, |i| p.kind[i] == Kind::Fluid, eos, g)
 }
 
-/// E_k, E_p and E_c of the particles `i` for which `which(i)` holds.
+/// E_k, E_p and E_c of the particles `i` for which `which(i)` holds (the same bits on
+/// any number of threads).
 pub fn energies_of<const D: usize>(
     p: &Particles<D>,
     which: impl Fn(usize) -> bool + Sync + Send,
     eos: &LinearEos,
     g: &Vector<D>,
 ) -> Energies {
-    (0..p.len())
-        .into_par_iter()
-        .filter(|&i| which(i))
-        .map(|i| {
-            let m = p.mass[i];
-            Energies {
-                kinetic: 0.5 * m * p.u[i].norm_squared(),
-                potential: -m * g.dot(&p.x[i]),
-                internal: m * eos.internal_energy(p.rho[i]),
-            }
-        })
-        .reduce(Energies::default, |a, b| Energies {
-            kinetic: a.kinetic + b.kinetic,
-            potential: a.potential + b.potential,
-            internal: a.internal + b.internal,
-        })
+    let block = |range: std::ops::Range<usize>| {
+        range
+            .filter(|&i| which(i))
+            .fold(Energies::default(), |e, i| {
+                let m = p.mass[i];
+                e.add(Energies {
+                    kinetic: 0.5 * m * p.u[i].norm_squared(),
+                    potential: -m * g.dot(&p.x[i]),
+                    internal: m * eos.internal_energy(p.rho[i]),
+                })
+            })
+    };
+    sum_in_blocks(p.len(), Energies::default, block, Energies::add)
 }
 
 /// Largest `|ρ_i/ρ0 - 1|` over the fluid.

@@ -7,7 +7,7 @@ use super::budget::EnergyBudget;
 use super::sensors::Sensor;
 use super::Energies;
 use crate::boundary::bodies::{Body, Load};
-use crate::case::Case;
+use crate::case::{Case, MotionChoice};
 use crate::motion::rigid::Pose;
 use crate::particles::Vector;
 
@@ -20,6 +20,8 @@ pub trait Measure<const D: usize> {
     /// E_k, E_p and E_c of the fluid.
     fn energies(&self) -> Energies;
     fn budget(&self) -> Option<EnergyBudget>;
+    /// The free bodies' mechanical energy (zero without any).
+    fn free_bodies_energy(&self) -> f64;
     /// Largest `|ρ/ρ0 - 1|` over the fluid.
     fn max_density_variation(&self) -> f64;
     /// Fluid particles removed so far (left the domain).
@@ -60,7 +62,12 @@ pub fn observers<const D: usize>(case: &Case, bodies: &[Body]) -> Vec<Box<dyn Ob
         list.push(Box::new(EnergyColumns));
     }
     if diag.energy_budget {
-        list.push(Box::new(BudgetColumns));
+        let motions = case.body_motions();
+        let moves = |m: MotionChoice| motions.iter().any(|b| b.motion == m);
+        list.push(Box::new(BudgetColumns {
+            moving: moves(MotionChoice::Prescribed) || moves(MotionChoice::Free),
+            free: moves(MotionChoice::Free),
+        }));
     }
     list.push(Box::new(Conservation {
         created: !case.open_boundary.is_empty(),
@@ -146,8 +153,13 @@ impl<const D: usize> Observer<D> for EnergyColumns {
     }
 }
 
-/// The energy budget's work and powers (see [`super::budget`]).
-struct BudgetColumns;
+/// The energy budget's work and powers (see [`super::budget`]); with moving bodies the
+/// moving walls' power, and with free bodies their power and energy. The closure is
+/// `total + free_bodies_energy + removed_energy - work_of_dissipation_and_walls`.
+struct BudgetColumns {
+    moving: bool,
+    free: bool,
+}
 
 impl<const D: usize> Observer<D> for BudgetColumns {
     fn header(&self, out: &mut Vec<String>) {
@@ -161,6 +173,12 @@ impl<const D: usize> Observer<D> for BudgetColumns {
             ]
             .map(String::from),
         );
+        if self.moving {
+            out.extend(["moving_wall_power", "moving_wall_work"].map(String::from));
+        }
+        if self.free {
+            out.extend(["free_body_power", "free_bodies_energy"].map(String::from));
+        }
     }
     fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
         let b = run.budget().unwrap_or_default();
@@ -171,6 +189,12 @@ impl<const D: usize> Observer<D> for BudgetColumns {
             b.last.wall,
             b.removed_energy,
         ]);
+        if self.moving {
+            out.extend([b.last.moving, b.work_of_moving_walls()]);
+        }
+        if self.free {
+            out.extend([b.last.bodies, run.free_bodies_energy()]);
+        }
     }
 }
 

@@ -112,6 +112,9 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
             b.last.wall,
             b.removed_energy,
             b.pending,
+            b.last.moving,
+            b.last.bodies,
+            b.moving_work,
         ];
         file.new_attr::<f64>()
             .shape(v.len())
@@ -308,9 +311,10 @@ impl Reader<'_> {
         let v: Vec<f64> = a
             .read_raw()
             .map_err(|e| self.corrupt(format!("attribute energy_budget ({e})")))?;
-        if v.len() != 6 {
+        // 6 in files written before moving walls and free bodies had powers
+        if v.len() != 6 && v.len() != 9 {
             return Err(self.corrupt(format!(
-                "energy_budget holds {} values, expected 6",
+                "energy_budget holds {} values, expected 9",
                 v.len()
             )));
         }
@@ -321,6 +325,9 @@ impl Reader<'_> {
             ..Default::default()
         };
         (b.last.viscous, b.last.diffusive, b.last.wall) = (v[1], v[2], v[3]);
+        if let [moving, bodies, work] = v[6..] {
+            (b.last.moving, b.last.bodies, b.moving_work) = (moving, bodies, work);
+        }
         Ok(Some(b))
     }
 }

@@ -143,22 +143,56 @@ impl Spring {
         }
     }
 
+    /// The line from the anchor to the point at state `s` (`None` while a slack line
+    /// is shorter than its rest length, or the point sits on the anchor).
+    fn stretch(&self, s: &RigidState) -> Option<Stretch> {
+        let arm = s.orientation * self.offset;
+        let line = s.position + arm - self.anchor;
+        let length = line.norm();
+        if length == 0.0 || (self.slack && length < self.rest) {
+            return None;
+        }
+        let n = line / length;
+        Some(Stretch {
+            arm,
+            n,
+            extension: length - self.rest,
+            speed: (s.velocity + s.omega.cross(&arm)).dot(&n),
+        })
+    }
+
     /// The force on the body and the arm from the reference point where it acts:
     /// `-T n`, `T = k (L - L0) + c dL/dt` along `n` from the anchor to the point (none
     /// while a slack line is shorter than its rest length).
     fn force(&self, s: &RigidState) -> (V3, V3) {
-        let arm = s.orientation * self.offset;
-        let point = s.position + arm;
-        let line = point - self.anchor;
-        let length = line.norm();
-        if length == 0.0 || (self.slack && length < self.rest) {
-            return (V3::zeros(), arm);
+        match self.stretch(s) {
+            Some(l) => (
+                -l.n * (self.stiffness * l.extension + self.damping * l.speed),
+                l.arm,
+            ),
+            None => (V3::zeros(), s.orientation * self.offset),
         }
-        let n = line / length;
-        let speed = (s.velocity + s.omega.cross(&arm)).dot(&n);
-        let tension = self.stiffness * (length - self.rest) + self.damping * speed;
-        (-n * tension, arm)
     }
+
+    /// The spring's stored energy `k (L - L0)²/2` and the damper's power `-c (dL/dt)²`.
+    fn energy_and_damping(&self, s: &RigidState) -> (f64, f64) {
+        self.stretch(s).map_or((0.0, 0.0), |l| {
+            let energy = 0.5 * self.stiffness * l.extension * l.extension;
+            (energy, -self.damping * l.speed * l.speed)
+        })
+    }
+}
+
+/// A taut spring's line at a state.
+struct Stretch {
+    /// From the reference point to the spring's point.
+    arm: V3,
+    /// The unit vector from the anchor to the point.
+    n: V3,
+    /// `L - L0`.
+    extension: f64,
+    /// `dL/dt`.
+    speed: f64,
 }
 
 /// A free body of the case: constants, state, and the integrators' scratch.
@@ -187,6 +221,9 @@ pub struct FreeBody<const D: usize> {
     /// The rates at the last evaluation, and the integrator's weighted sum of rates.
     pub rate: Rate,
     pub sum: Rate,
+    /// The power the fluid and the dampers delivered at the last evaluation,
+    /// `F·V + M·Ω - Σ c (dL/dt)²` (moment about the reference point).
+    pub power: f64,
 }
 
 /// The mass properties of a free body before its case's values replace them.
@@ -255,6 +292,7 @@ impl<const D: usize> FreeBody<D> {
             start: state,
             rate: Rate::default(),
             sum: Rate::default(),
+            power: 0.0,
         }
     }
 
@@ -266,12 +304,17 @@ impl<const D: usize> FreeBody<D> {
         let weight = self.gravity * self.mass;
         let arm = s.orientation * self.com_offset;
         let mut force = fluid + weight;
-        let mut moment = load.moment - s.position.cross(&fluid) + arm.cross(&weight);
+        let fluid_moment = load.moment - s.position.cross(&fluid);
+        let mut moment = fluid_moment + arm.cross(&weight);
         for spring in &self.springs {
             let (f, at) = spring.force(s);
             force += f;
             moment += at.cross(&f);
         }
+        let damping: f64 = (self.springs.iter())
+            .map(|k| k.energy_and_damping(s).1)
+            .sum();
+        self.power = fluid.dot(&s.velocity) + fluid_moment.dot(&s.omega) + damping;
         let acceleration = (force / self.mass).component_mul(&self.translates);
         let rotation = s.orientation.to_rotation_matrix();
         let inertia = rotation.matrix() * self.inertia_ref * rotation.matrix().transpose();
@@ -282,6 +325,24 @@ impl<const D: usize> FreeBody<D> {
             omega: s.omega,
             alpha: constrained(&self.axes, &inertia, &torque),
         };
+    }
+
+    /// The body's mechanical energy: kinetic `m |V_c|²/2 + Ω·I_c Ω/2` (`V_c` the centre
+    /// of mass's velocity, `I_c` the inertia about it in the current frame), gravity's
+    /// `-m g·X_c` and the springs' `k (L - L0)²/2`.
+    pub fn energy(&self) -> f64 {
+        let s = &self.state;
+        let arm = s.orientation * self.com_offset;
+        let centre_velocity = s.velocity + s.omega.cross(&arm);
+        let rotation = s.orientation.to_rotation_matrix();
+        let inertia = rotation.matrix() * self.inertia * rotation.matrix().transpose();
+        let kinetic = 0.5 * (self.mass * centre_velocity.norm_squared())
+            + 0.5 * s.omega.dot(&(inertia * s.omega));
+        let potential = -self.mass * self.gravity.dot(&(s.position + arm));
+        let springs: f64 = (self.springs.iter())
+            .map(|k| k.energy_and_damping(s).0)
+            .sum();
+        kinetic + potential + springs
     }
 
     /// The pose of the reference point, with the last rates' accelerations (those of

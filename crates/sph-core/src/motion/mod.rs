@@ -191,21 +191,33 @@ impl<const D: usize> Motions<D> {
         })
     }
 
+    /// The free bodies, in case order, to read.
+    fn free(&self) -> impl Iterator<Item = &FreeBody<D>> {
+        self.bodies.iter().filter_map(|b| match &b.drive {
+            Drive::Free(f) => Some(f.as_ref()),
+            Drive::Prescribed(_) => None,
+        })
+    }
+
     /// Each free body's record for a restart file, in case order.
     pub fn free_records(&self) -> Vec<[f64; free::RECORD]> {
-        (self.bodies.iter())
-            .filter_map(|b| match &b.drive {
-                Drive::Free(f) => Some(f.record()),
-                Drive::Prescribed(_) => None,
-            })
-            .collect()
+        self.free().map(FreeBody::record).collect()
+    }
+
+    /// The free bodies' mechanical energy (see [`FreeBody::energy`]).
+    pub fn free_energy(&self) -> f64 {
+        self.free().fold(0.0, |e, b| e + b.energy())
+    }
+
+    /// The power the fluid and the dampers delivered to the free bodies at the last
+    /// evaluation (see [`FreeBody::power`]).
+    pub fn free_power(&self) -> f64 {
+        self.free().fold(0.0, |e, b| e + b.power)
     }
 
     /// How many of the bodies are free.
     pub fn free_count(&self) -> usize {
-        (self.bodies.iter())
-            .filter(|b| matches!(b.drive, Drive::Free(_)))
-            .count()
+        self.free().count()
     }
 
     /// The free body (its index among the free bodies) each particle belongs to, for
@@ -230,11 +242,8 @@ impl<const D: usize> Motions<D> {
 
     /// The smallest of the free bodies' own limits on Δt (infinite without any).
     pub fn max_dt(&self) -> f64 {
-        (self.bodies.iter())
-            .filter_map(|b| match &b.drive {
-                Drive::Free(f) => Some(f.max_dt()),
-                Drive::Prescribed(_) => None,
-            })
+        self.free()
+            .map(FreeBody::max_dt)
             .fold(f64::INFINITY, f64::min)
     }
 }

@@ -9,6 +9,7 @@
 //! between processes handle each column through that list ([`column::Column`]). A
 //! column only some runs need is an `Option<Vec<T>>`, `None` in the others.
 
+pub mod blocks;
 mod column;
 
 pub use column::{permute, retain, Column, Value};

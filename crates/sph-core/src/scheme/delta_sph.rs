@@ -17,6 +17,7 @@ use crate::boundary::bodies::Load;
 use crate::boundary::extrapolate_walls;
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;
+use crate::particles::blocks::{sum_in_blocks, BLOCK};
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::diffusion::DensityDiffusion;
 
@@ -29,9 +30,6 @@ use crate::scheme::model::{
     fluid_pressure, pressure_and_volume, tensile_pressure, Model, Physics, Powers, Rates,
 };
 use rayon::prelude::*;
-
-/// Particles per block of the wall loads' sum, whose blocks are added in order.
-const LOAD_BLOCK: usize = 4096;
 
 /// A fully resolved scheme: kernel `K`, density diffusion `Df`, viscosity `V`.
 pub struct Scheme<const D: usize, K, Df, V> {
@@ -72,8 +70,23 @@ struct Sums<const D: usize> {
     diffusion: f64,
     /// Σ_w p_w ∇W V_w over wall neighbours (for the wall power)
     wall_pressure: Vector<D>,
+    /// What the walls' own velocities carry (for the powers; zero at rest)
+    moving: MovingWallSums,
     /// Whether any fluid particle lies within the kernel support
     fluid_in_reach: bool,
+}
+
+/// The wall pair sums of the energy budget taken at the walls' velocities u_w: with
+/// them the powers count wall pairs at the relative velocity, and the moving walls'
+/// power apart (see [`Powers`]).
+#[derive(Default)]
+struct MovingWallSums {
+    /// Σ_w (p_w + p_i) u_w·∇W V_w: the pressure pairs' share of `P_M`
+    pair_pressure: f64,
+    /// Σ_w p_w u_w·∇W V_w: the wall pressure's, taken out of `P_W`
+    wall_pressure: f64,
+    /// Σ_w π_iw u_w·∇W V_w: the no-slip pairs', moved from `P_V` to `P_M`
+    viscous: f64,
 }
 
 /// One fluid-wall pair of the momentum equation (see [`Scheme::wall_pair`]).
@@ -145,6 +158,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             viscous: zero,
             diffusion: 0.0,
             wall_pressure: zero,
+            moving: MovingWallSums::default(),
             fluid_in_reach: false,
         };
         for &j in list.fluid(i) {
@@ -186,6 +200,10 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             s.pressure += w.grad_w * (p.p[w.j] + pi_pair);
             if BUDGET {
                 s.wall_pressure += w.grad_w * p.p[w.j];
+                let along = p.u[w.j].dot(&w.grad_w);
+                s.moving.pair_pressure += along * (p.p[w.j] + pi_pair);
+                s.moving.wall_pressure += along * p.p[w.j];
+                s.moving.viscous += along * w.viscous;
             }
             if V::ACTIVE {
                 s.viscous += w.grad_w * w.viscous;
@@ -194,9 +212,18 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         if !s.fluid_in_reach {
             // a lone particle: only walls are within reach, and they push it, never
             // pull it, nor stretch it below ρ0 (see `boundary`)
-            s.pressure = self.wall_sum(i, p, list, domain, |p_w| (p_w + pi).max(0.0));
+            let vol = &self.volume;
+            let pair = |j: usize| (p.p[j] + pi).max(0.0);
+            s.pressure = self.wall_sum(i, p, list, domain, |j, x, f| x * (f * pair(j) * vol[j]));
             if BUDGET {
-                s.wall_pressure = s.pressure - self.wall_sum(i, p, list, domain, |_| pi);
+                let own = self.wall_sum(i, p, list, domain, |j, x, f| x * (f * pi * vol[j]));
+                s.wall_pressure = s.pressure - own;
+                let along = |j: usize, x: Vector<D>, f: f64| p.u[j].dot(&(x * (f * vol[j])));
+                s.moving.pair_pressure =
+                    self.wall_sum(i, p, list, domain, |j, x, f| pair(j) * along(j, x, f));
+                s.moving.wall_pressure = self.wall_sum(i, p, list, domain, |j, x, f| {
+                    (pair(j) - pi) * along(j, x, f)
+                });
             }
             if rho_i <= self.physics.eos.rho0 {
                 s.divergence = s.divergence.min(0.0);
@@ -205,7 +232,9 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         s
     }
 
-    /// The rates of every particle (zero for walls) and, when `BUDGET`, the powers.
+    /// The rates of every particle (zero for walls) and, when `BUDGET`, the powers,
+    /// summed in fixed blocks (the same bits on any number of threads, see
+    /// [`crate::particles::blocks`]).
     fn pair_loop<const DIFF: bool, const BUDGET: bool>(
         &self,
         particles: &Particles<D>,
@@ -213,41 +242,71 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         domain: &Domain<D>,
         rates: &mut Rates<D>,
     ) -> Powers {
-        let g = self.physics.gravity;
-        let k = self.viscosity.k();
-        let scale = 2.0 * self.diffusion_scale;
-        rates
-            .drho
-            .par_iter_mut()
+        let particle = |i: usize, drho: &mut f64, drho_diff: &mut f64, du: &mut Vector<D>| {
+            self.particle_rates::<DIFF, BUDGET>(i, particles, list, domain, drho, drho_diff, du)
+        };
+        let rows = (rates.drho.par_iter_mut())
             .zip(rates.drho_diff.par_iter_mut())
             .zip(rates.du.par_iter_mut())
+            .enumerate();
+        if !BUDGET {
+            rows.for_each(|(i, ((drho, drho_diff), du))| _ = particle(i, drho, drho_diff, du));
+            return Powers::default();
+        }
+        let blocks: Vec<Powers> = (rates.drho.par_chunks_mut(BLOCK))
+            .zip(rates.drho_diff.par_chunks_mut(BLOCK))
+            .zip(rates.du.par_chunks_mut(BLOCK))
             .enumerate()
-            .map(|(i, ((drho, drho_diff), du))| {
-                if particles.kind[i] != Kind::Fluid {
-                    (*drho, *du) = (0.0, Vector::zeros());
-                    if DIFF {
-                        *drho_diff = 0.0;
-                    }
-                    return Powers::default();
-                }
-                let s = self.sums::<DIFF, BUDGET>(i, particles, list, domain);
-                let row = self.row::<DIFF>(i, particles, &s, g, k, scale);
-                (*drho, *du) = (row.drho, row.du);
-                if DIFF {
-                    *drho_diff = row.drho_diff;
-                }
-                if BUDGET {
-                    let (m, rho, u) = (particles.mass[i], particles.rho[i], particles.u[i]);
-                    Powers {
-                        viscous: m * u.dot(&s.viscous) * k / rho,
-                        diffusive: m * particles.p[i] / (rho * rho) * row.drho_diff,
-                        wall: -m / rho * u.dot(&s.wall_pressure),
-                    }
-                } else {
-                    Powers::default()
-                }
+            .map(|(b, ((drho, drho_diff), du))| {
+                (0..drho.len()).fold(Powers::default(), |sum, k| {
+                    let i = b * BLOCK + k;
+                    sum.add(particle(i, &mut drho[k], &mut drho_diff[k], &mut du[k]))
+                })
             })
-            .reduce(Powers::default, Powers::add)
+            .collect();
+        blocks.into_iter().fold(Powers::default(), Powers::add)
+    }
+
+    /// The rates of particle i (zero for a wall) and, when `BUDGET`, its powers.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn particle_rates<const DIFF: bool, const BUDGET: bool>(
+        &self,
+        i: usize,
+        particles: &Particles<D>,
+        list: &NeighbourList<D>,
+        domain: &Domain<D>,
+        drho: &mut f64,
+        drho_diff: &mut f64,
+        du: &mut Vector<D>,
+    ) -> Powers {
+        if particles.kind[i] != Kind::Fluid {
+            (*drho, *du) = (0.0, Vector::zeros());
+            if DIFF {
+                *drho_diff = 0.0;
+            }
+            return Powers::default();
+        }
+        let k = self.viscosity.k();
+        let scale = 2.0 * self.diffusion_scale;
+        let s = self.sums::<DIFF, BUDGET>(i, particles, list, domain);
+        let row = self.row::<DIFF>(i, particles, &s, self.physics.gravity, k, scale);
+        (*drho, *du) = (row.drho, row.du);
+        if DIFF {
+            *drho_diff = row.drho_diff;
+        }
+        if !BUDGET {
+            return Powers::default();
+        }
+        let (m, rho, u) = (particles.mass[i], particles.rho[i], particles.u[i]);
+        let moved = &s.moving;
+        Powers {
+            viscous: m * (u.dot(&s.viscous) - moved.viscous) * k / rho,
+            diffusive: m * particles.p[i] / (rho * rho) * row.drho_diff,
+            wall: -m / rho * (u.dot(&s.wall_pressure) - moved.wall_pressure),
+            moving: m / rho * (moved.viscous * k - moved.pair_pressure),
+            bodies: 0.0,
+        }
     }
 
     /// Continuity, its diffusive part and momentum of fluid particle i from its sums.
@@ -313,22 +372,22 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         })
     }
 
-    /// `Σ_w P(p_w) ∇_iW_iw V_w` over the wall neighbours of fluid particle i.
-    fn wall_sum(
+    /// `Σ_w term(w, x_iw, F(r_iw))` over the wall neighbours w of fluid particle i
+    /// (`∇_iW_iw = x_iw F(r_iw)`).
+    fn wall_sum<T: std::iter::Sum>(
         &self,
         i: usize,
         p: &Particles<D>,
         list: &NeighbourList<D>,
         domain: &Domain<D>,
-        pair_pressure: impl Fn(f64) -> f64,
-    ) -> Vector<D> {
+        term: impl Fn(usize, Vector<D>, f64) -> T,
+    ) -> T {
         list.walls(i)
             .iter()
             .map(|&j| {
                 let j = j as usize;
                 let x_ij = domain.separation(&p.x[i], &p.x[j]);
-                let f = self.kernel.dw_over_r(x_ij.norm());
-                x_ij * (f * pair_pressure(p.p[j]) * self.volume[j])
+                term(j, x_ij, self.kernel.dw_over_r(x_ij.norm()))
             })
             .sum()
     }
@@ -455,38 +514,35 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Model<D>
         self.prepare(particles, list, domain);
         let p: &Particles<D> = particles;
         let k = self.viscosity.k();
-        // fixed blocks summed in order: the same bits on any number of threads (a
-        // free body's motion, and so the run, depends on them)
-        let blocks: Vec<Vec<Load<D>>> = (0..p.len().div_ceil(LOAD_BLOCK))
-            .into_par_iter()
-            .map(|b| {
-                let mut loads = vec![Load::default(); bodies];
-                let range = b * LOAD_BLOCK..((b + 1) * LOAD_BLOCK).min(p.len());
-                for i in range.filter(|&i| p.kind[i] == Kind::Fluid) {
-                    let (pi, scale) = (p.p[i], p.mass[i] / p.rho[i]);
-                    let lone = !self.fluid_in_reach(i, p, list, domain);
-                    let pi_pair = self.pair_pressure(i, pi);
-                    for &j in list.walls(i) {
-                        let w = self.wall_pair(i, j as usize, p, domain);
-                        let Some(b) = body[w.j] else { continue };
-                        let pair = if lone {
-                            (p.p[w.j] + pi).max(0.0)
-                        } else {
-                            p.p[w.j] + pi_pair
-                        };
-                        let viscous = if V::ACTIVE {
-                            -w.grad_w * (w.viscous * k * scale)
-                        } else {
-                            Vector::zeros()
-                        };
-                        let arm = domain.separation(&p.x[w.j], centre);
-                        loads[b].add_pair(w.grad_w * (pair * scale), viscous, &arm);
-                    }
+        // the same bits on any number of threads: a free body's motion, and so the
+        // run, depends on them
+        let block = |range: std::ops::Range<usize>| {
+            let mut loads = vec![Load::default(); bodies];
+            for i in range.filter(|&i| p.kind[i] == Kind::Fluid) {
+                let (pi, scale) = (p.p[i], p.mass[i] / p.rho[i]);
+                let lone = !self.fluid_in_reach(i, p, list, domain);
+                let pi_pair = self.pair_pressure(i, pi);
+                for &j in list.walls(i) {
+                    let w = self.wall_pair(i, j as usize, p, domain);
+                    let Some(b) = body[w.j] else { continue };
+                    let pair = if lone {
+                        (p.p[w.j] + pi).max(0.0)
+                    } else {
+                        p.p[w.j] + pi_pair
+                    };
+                    let viscous = if V::ACTIVE {
+                        -w.grad_w * (w.viscous * k * scale)
+                    } else {
+                        Vector::zeros()
+                    };
+                    let arm = domain.separation(&p.x[w.j], centre);
+                    loads[b].add_pair(w.grad_w * (pair * scale), viscous, &arm);
                 }
-                loads
-            })
-            .collect();
-        (blocks.into_iter()).fold(vec![Load::default(); bodies], |a, b| {
+            }
+            loads
+        };
+        let zero = || vec![Load::default(); bodies];
+        sum_in_blocks(p.len(), zero, block, |a: Vec<Load<D>>, b| {
             a.into_iter().zip(b).map(|(x, y)| x + y).collect()
         })
     }

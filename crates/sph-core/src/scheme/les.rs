@@ -197,7 +197,7 @@ impl<const D: usize, K: Kernel> LesScheme<D, K> {
                     Powers {
                         viscous: m * p.u[i].dot(&viscous),
                         diffusive: m * p.p[i] / (rho_i * rho_i) * 2.0 * s.diffusion,
-                        wall: 0.0,
+                        ..Powers::default()
                     }
                 } else {
                     Powers::default()

@@ -53,22 +53,33 @@ impl<const D: usize> Rates<D> {
     }
 }
 
-/// Rates of change of the mechanical energy due to the dissipative terms (docs/theory.md §10).
+/// Rates of change of the mechanical energy of the fluid and the free bodies
+/// (docs/theory.md §10). Wall pairs count at the velocity relative to the wall
+/// (`u_iw = u_i - u_w`), and what a moving wall's own velocity carries is `moving`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Powers {
-    /// Viscous power `P_V = Σ m_i u_i · (du_i/dt)_visc`, never positive.
+    /// Viscous power `P_V = Σ m_i (u_i · (du_i/dt)_visc - Σ_w u_w · f^visc_iw)`, never
+    /// positive with walls at rest.
     pub viscous: f64,
     /// Diffusive power `P_D = Σ m_i (p_i/ρ_i²) δ h c0 D_i`.
     pub diffusive: f64,
-    /// Power exchanged with the dummy walls, `P_W = -Σ_i Σ_w V_i V_w p_w u_i·∇_iW_iw`.
+    /// Power exchanged with the dummy walls, `P_W = -Σ_i Σ_w V_i V_w p_w u_iw·∇_iW_iw`.
     /// The extrapolated wall pressure is not derived from an energy, so the walls store
     /// and return energy like springs; the balance closes only with this term.
     pub wall: f64,
+    /// Power the moving walls deliver to the fluid, `P_M = Σ_i Σ_w F_iw·u_w` with
+    /// `F_iw` the wall pair's force on fluid particle i, pressure and viscous
+    /// (`-V_i V_w (p_w + p_i) ∇_iW_iw` and the no-slip term): zero with walls at rest.
+    pub moving: f64,
+    /// Power the fluid and the dampers deliver to the free bodies,
+    /// `P_B = Σ_b (F_b·V_b + M_b·Ω_b) - Σ c (dL/dt)²`, filled in by the stepper (the
+    /// scheme leaves it zero).
+    pub bodies: f64,
 }
 
 impl Powers {
     pub fn total(&self) -> f64 {
-        self.viscous + self.diffusive + self.wall
+        self.viscous + self.diffusive + self.wall + self.moving + self.bodies
     }
 }
 
@@ -237,6 +248,8 @@ impl Powers {
             viscous: self.viscous + other.viscous,
             diffusive: self.diffusive + other.diffusive,
             wall: self.wall + other.wall,
+            moving: self.moving + other.moving,
+            bodies: self.bodies + other.bodies,
         }
     }
 }

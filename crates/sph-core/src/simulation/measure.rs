@@ -57,6 +57,9 @@ impl<const D: usize> Measure<D> for Row<'_, D> {
     fn budget(&self) -> Option<EnergyBudget> {
         self.sim.budget()
     }
+    fn free_bodies_energy(&self) -> f64 {
+        (self.sim.motions()).map_or(0.0, crate::motion::Motions::free_energy)
+    }
     fn max_density_variation(&self) -> f64 {
         self.sim.max_density_variation()
     }

@@ -266,9 +266,6 @@ impl<const D: usize> Simulation<D> {
     pub fn budget_caveats(&self) -> Vec<&'static str> {
         let case = &self.case;
         let mut why = Vec::new();
-        if case.tank.iter().any(|t| t.lid_velocity.is_some()) {
-            why.push("a sliding lid does work on the fluid that no power term counts");
-        }
         if case.scheme.walls == crate::case::WallCondition::NoSlip {
             why.push("the no-slip wall term makes P_V not sign-definite");
         }

@@ -25,7 +25,7 @@ use crate::motion::free::{FreeBody, Rate};
 use crate::motion::Motions;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
-use crate::scheme::model::{Model, Rates};
+use crate::scheme::model::{Model, Powers, Rates};
 use rayon::prelude::*;
 
 /// What a step needs besides the particles.
@@ -86,6 +86,14 @@ impl<const D: usize> Context<'_, D> {
             let loads = (self.model).wall_loads(p, self.list, self.domain, &owners, n, &origin);
             motions.take_loads(&loads);
         }
+    }
+
+    /// The energy budget's powers at the last evaluation (`None` when the scheme keeps
+    /// no budget), the free bodies' included.
+    pub fn powers(&self) -> Option<Powers> {
+        let mut now = self.model.last_powers()?;
+        now.bodies = self.motions.as_deref().map_or(0.0, Motions::free_power);
+        Some(now)
     }
 
     /// Applies `f` to every free body (the integrators advance them with the fluid).

@@ -115,9 +115,11 @@ class Simulation:
     def wall_crossings(self) -> int:
         """Fluid particles inside a wall now (zero in a sound run)."""
     def energies(self) -> dict[str, Optional[float]]:
-        """``kinetic``, ``potential``, ``internal``, ``total`` and ``dissipated`` [J].
+        """``kinetic``, ``potential``, ``internal``, ``total`` (the fluid's), ``bodies``
+        (the free bodies'), ``dissipated`` and ``moving_work`` [J]:
+        ``total + bodies + dissipated`` stays constant.
 
-        ``dissipated`` is None unless ``diagnostics.energy_budget = true``.
+        ``dissipated`` and ``moving_work`` are None unless ``diagnostics.energy_budget = true``.
         """
     def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,); NaN at

@@ -35,14 +35,6 @@ impl Case {
                 ));
             }
         }
-        if self.diagnostics.energy_budget {
-            return Err(SphError::invalid(
-                "diagnostics.energy_budget",
-                "true",
-                "no energy budget in a case with moving bodies yet (it has no term for the \
-                 power the moving walls supply)",
-            ));
-        }
         Ok(())
     }
 

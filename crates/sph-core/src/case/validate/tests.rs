@@ -266,11 +266,6 @@ fn motions_agree_with_their_tables_and_the_dimension() {
             moving_baffle("motion = \"prescribed\"", Some("ramp = -1.0")),
             "wall[0].prescribed.ramp = -1",
         ),
-        (
-            moving_baffle("motion = \"prescribed\"", Some("ramp = 1.0"))
-                + "[diagnostics]\nenergy_budget = true\n",
-            "diagnostics.energy_budget = true: expected no energy budget in a case with moving",
-        ),
     ];
     for (text, start) in refused {
         let e = error_of(&text);

@@ -438,3 +438,64 @@ fn a_build_without_mpi_refuses_to_run_under_a_launcher() {
     );
     assert!(!dir.exists(), "no folder is made");
 }
+
+/// A free body's run with the energy budget: the time series carries the moving walls'
+/// power and work and the free bodies' power and energy, with which the CSV alone
+/// closes the budget (`total + free_bodies_energy + removed - work` stays at its start
+/// within 1% of what the box gave the water), and the summary prints them.
+#[test]
+fn a_floating_box_s_budget_closes_from_its_time_series() {
+    let dir = scratch("floating_budget");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(example("floating_box_2d.toml"))
+        .unwrap()
+        .replace("spacing = 0.01 ", "spacing = 0.02 ")
+        .replace(
+            "lo = [0.4, 0.25], hi = [0.6, 0.35]",
+            "lo = [0.4, 0.27], hi = [0.6, 0.37]",
+        )
+        .replace("end = 4.0", "end = 0.3")
+        + "\n[diagnostics]\nenergy_budget = true\ninterval = 0.01\n";
+    let case = dir.join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    let out_dir = dir.join("out");
+    let out = cli(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(summary.contains("moving walls' work"), "{summary}");
+    assert!(summary.contains("free bodies' energy E_b"), "{summary}");
+    let series = std::fs::read_to_string(out_dir.join("timeseries.csv")).unwrap();
+    let mut lines = series.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| {
+        (header.iter().position(|h| *h == name)).unwrap_or_else(|| panic!("{name}: {header:?}"))
+    };
+    let names = ["total", "free_bodies_energy", "removed_energy"];
+    let (sum, work) = (names.map(column), column("work_of_dissipation_and_walls"));
+    let moving = column("moving_wall_work");
+    let _ = (column("moving_wall_power"), column("free_body_power"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let closure = |r: &Vec<f64>| sum.iter().map(|&k| r[k]).sum::<f64>() - r[work];
+    let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+    let given = last[moving];
+    let (bodies, start) = (column("free_bodies_energy"), closure(first));
+    assert!(first[bodies] - last[bodies] > 0.5, "the box fell");
+    assert!(given > 0.5, "its walls did work on the water: {given}");
+    let worst = rows
+        .iter()
+        .map(|r| (closure(r) - start).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 0.01 * given, "{worst} against {given}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,6 +1,6 @@
 //! A prescribed rigid motion: the pivot's displacement and the rotation about it as
 //! expressions of time (exmex), differentiated exactly once and twice, with an
-//! optional cosine ramp.
+//! optional smooth-step ramp (see `PrescribedMotion::ramp_at`).
 
 use super::rigid::{angular_rates, Pose};
 use super::table::{self, Spline};

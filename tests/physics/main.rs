@@ -20,3 +20,4 @@ mod time_integration;
 mod validation;
 mod walls;
 mod water_wedge;
+mod waves;

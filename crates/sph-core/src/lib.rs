@@ -8,7 +8,7 @@
 //! run folder by [`run::Run`].
 //!
 //! Modules by concept, each depending only on those listed before it: [`particles`],
-//! [`domain`] → [`decomposition`] → [`distributed`], [`neighbours`] → [`physics`] → [`boundary`] → [`case`] → [`scheme`],
+//! [`domain`] → [`decomposition`] → [`distributed`], [`neighbours`] → [`physics`] → [`boundary`] → [`waves`] → [`case`] → [`scheme`],
 //! [`geometry`], [`forcing`], [`motion`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
 
 pub mod allocator;
@@ -30,6 +30,7 @@ pub mod run;
 pub mod scheme;
 pub mod simulation;
 pub mod time;
+pub mod waves;
 
 pub use case::Case;
 pub use error::{Result, SphError};

@@ -1,6 +1,7 @@
 //! The `[diagnostics]` table: what the time series records (energies and their budget,
 //! probes, sensors, loads, the surge front) and the free surface in snapshots.
 
+use super::Case;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -50,6 +51,35 @@ pub struct DiagnosticsConfig {
     /// optionally low-pass filtered.
     #[serde(default)]
     pub sensors: Vec<SensorConfig>,
+    /// Wave gauges: the free-surface elevation on vertical lines (see [`GaugeConfig`]).
+    #[serde(default)]
+    pub gauges: Vec<GaugeConfig>,
+    /// The still-water level \[m\] the gauges' elevations are measured from (vertical:
+    /// y in 2D, z in 3D). Default: 0 (elevations are heights).
+    #[serde(default)]
+    pub still_level: Option<f64>,
+}
+
+/// The most samples on a gauge's line (Δx/4 apart).
+pub const MAX_GAUGE_SAMPLES: usize = 100_000;
+
+/// A wave gauge: column `<name>_elevation`, the height above `still_level` where the
+/// fluid's kernel sum `Γ(z) = Σ_f W(x - x_f) V_f` falls through ½ on the vertical line
+/// at `position`, searched from the top (Γ sampled every Δx/4, crossing interpolated
+/// linearly). A dry gauge reads its `bottom`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GaugeConfig {
+    /// Heads the column.
+    pub name: String,
+    /// Where the gauge stands \[m\]: x in 2D, (x, y) in 3D.
+    pub position: Vec<f64>,
+    /// Lowest point of the line \[m\]. Default: the domain's or the tanks' bottom.
+    #[serde(default)]
+    pub bottom: Option<f64>,
+    /// Highest point of the line \[m\]. Default: the domain's or the tanks' top.
+    #[serde(default)]
+    pub top: Option<f64>,
 }
 
 /// The scales of the force coefficients.
@@ -96,4 +126,23 @@ pub struct SensorConfig {
     /// `<name>_filtered`; its state is kept in restart files. Default: none.
     #[serde(default)]
     pub cutoff: Option<f64>,
+}
+
+impl Case {
+    /// The vertical extent `[bottom, top]` of a gauge's line: its own, else the
+    /// domain's, else the tanks' (`None` where none gives it).
+    pub fn gauge_line(&self, gauge: &GaugeConfig) -> Option<[f64; 2]> {
+        let v = self.dimension - 1;
+        let (mut lo, mut hi) = match &self.domain {
+            Some(d) => (d.lo.get(v).copied(), d.hi.get(v).copied()),
+            None => (None, None),
+        };
+        if !self.tank.is_empty() {
+            let low = self.tank.iter().filter_map(|t| t.lo.get(v).copied());
+            let high = self.tank.iter().filter_map(|t| t.hi.get(v).copied());
+            lo = lo.or(low.reduce(f64::min));
+            hi = hi.or(high.reduce(f64::max));
+        }
+        Some([gauge.bottom.or(lo)?, gauge.top.or(hi)?])
+    }
 }

@@ -98,7 +98,14 @@ const TABLES: [&str; 10] = [
     "stability",
     "diagnostics",
 ];
-const TABLE_ARRAYS: [&str; 5] = ["fluid_block", "tank", "wall", "shape", "open_boundary"];
+const TABLE_ARRAYS: [&str; 6] = [
+    "fluid_block",
+    "tank",
+    "wall",
+    "shape",
+    "open_boundary",
+    "absorber",
+];
 
 /// Refuses a section of the wrong type by its name (serde would read `particles =
 /// [1, 2]` as the struct's fields in order, and blame whatever key failed next).

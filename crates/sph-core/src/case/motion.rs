@@ -1,9 +1,13 @@
 //! How a wall region moves: `motion` and its `[<region>.prescribed]` table, shared by
 //! `[[tank]]`, `[[wall]]` and `[[shape]]` walls.
 
+use crate::waves::paddle::WaveMaker;
+use crate::waves::spectrum::{Component, Jonswap};
+use crate::waves::theory::{frequency, Paddle};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::f64::consts::PI;
 
 /// How a wall region moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
@@ -69,6 +73,150 @@ pub struct PrescribedConfig {
     /// Named values the expressions may use (besides `t`, `PI` and `π`).
     #[serde(default)]
     pub constants: Option<BTreeMap<String, f64>>,
+    /// A wave maker instead of `displacement`, `rotation` or `table`: the paddle's
+    /// motion along x from the waves it is to make (see `docs/theory.md` §14). Waves
+    /// run toward +x. Default: none.
+    #[serde(default)]
+    pub waves: Option<WavesConfig>,
+}
+
+/// Which wave maker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PaddleChoice {
+    /// The whole region moves along x.
+    Piston,
+    /// The region turns about the hinge `pivot` (about z in 2D, about y in 3D), so
+    /// that its surface crossing moves along x.
+    Flap,
+}
+
+/// A wave maker: regular waves (`height` with `period` or `wavelength`) or an
+/// irregular sea (`spectrum`), made by a piston or a flap from Biesel's transfer
+/// function, a piston's regular waves with Madsen's second-order correction. The
+/// motion is ramped up over `ramp` (default two periods, or two peak periods).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WavesConfig {
+    /// "piston" or "flap" (which then turns about `pivot`, its hinge).
+    pub paddle: PaddleChoice,
+    /// Still-water depth at the paddle \[m\].
+    pub depth: f64,
+    /// A flap's hinge height above the bed \[m\] (negative: below it; the hinge's place
+    /// is the table's `pivot`). Default: 0, hinged at the bed.
+    #[serde(default)]
+    pub hinge_height: Option<f64>,
+    /// Regular waves: the height H \[m\], crest to trough.
+    #[serde(default)]
+    pub height: Option<f64>,
+    /// Regular waves: the period T \[s\] (or give `wavelength`).
+    #[serde(default)]
+    pub period: Option<f64>,
+    /// Regular waves: the wavelength L \[m\] (or give `period`).
+    #[serde(default)]
+    pub wavelength: Option<f64>,
+    /// Regular waves: 1 (Biesel's linear motion) or 2 (a piston's second-order motion
+    /// of Madsen 1971, which suppresses the free second harmonic). Default: 2 for a
+    /// piston, 1 for a flap (its second order is not built).
+    #[serde(default)]
+    pub order: Option<u8>,
+    /// An irregular sea instead of regular waves.
+    #[serde(default)]
+    pub spectrum: Option<SpectrumConfig>,
+}
+
+/// The defaults of an irregular sea: components, γ, band in units of `1/T_p`.
+const COMPONENTS: usize = 200;
+const GAMMA: f64 = 3.3;
+const BAND: [f64; 2] = [0.5, 2.5];
+
+impl WavesConfig {
+    /// The wave maker of this (validated) table under gravity `g` \[m/s²\].
+    pub fn maker(&self, g: f64) -> WaveMaker {
+        let paddle = match self.paddle {
+            PaddleChoice::Piston => Paddle::Piston,
+            PaddleChoice::Flap => Paddle::Flap {
+                hinge: self.hinge_height.unwrap_or(0.0),
+            },
+        };
+        let components = match &self.spectrum {
+            Some(sea) => sea.components(),
+            None => vec![Component {
+                amplitude: 0.5 * self.height.unwrap_or(0.0),
+                omega: self.angular_frequency(g),
+                phase: 0.0,
+            }],
+        };
+        WaveMaker {
+            paddle,
+            depth: self.depth,
+            components,
+            second_order: self.height.filter(|_| self.order() == 2),
+        }
+    }
+
+    /// ω of regular waves from their period or wavelength (0 without either).
+    pub fn angular_frequency(&self, g: f64) -> f64 {
+        match (self.period, self.wavelength) {
+            (Some(t), _) => 2.0 * PI / t,
+            (None, Some(l)) => frequency(2.0 * PI / l, self.depth, g),
+            (None, None) => 0.0,
+        }
+    }
+
+    /// The order of regular waves' generation (2 for a piston unless set).
+    pub fn order(&self) -> u8 {
+        self.order.unwrap_or(match self.paddle {
+            PaddleChoice::Piston => 2,
+            PaddleChoice::Flap => 1,
+        })
+    }
+
+    /// The (peak) period: the default ramp is two of them.
+    pub fn period(&self, g: f64) -> f64 {
+        match &self.spectrum {
+            Some(sea) => sea.peak_period,
+            None => 2.0 * PI / self.angular_frequency(g),
+        }
+    }
+}
+
+impl SpectrumConfig {
+    /// The sea's linear components (defaults filled in).
+    pub fn components(&self) -> Vec<Component> {
+        let tp = self.peak_period;
+        let band = self.frequencies.unwrap_or(BAND.map(|f| f / tp));
+        let jonswap = Jonswap {
+            significant_height: self.significant_height,
+            peak_period: tp,
+            gamma: self.gamma.unwrap_or(GAMMA),
+        };
+        let n = self.components.unwrap_or(COMPONENTS);
+        jonswap.components(n, band[0], band[1], self.seed.unwrap_or(0))
+    }
+}
+
+/// A JONSWAP sea made as a sum of linear components with random phases.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpectrumConfig {
+    /// Significant wave height `H_s = 4√m₀` \[m\].
+    pub significant_height: f64,
+    /// Peak period `T_p` \[s\].
+    pub peak_period: f64,
+    /// Peak enhancement γ (1: Pierson-Moskowitz). Default: 3.3.
+    #[serde(default)]
+    pub gamma: Option<f64>,
+    /// Number of components, equally spaced in frequency (the signal repeats after
+    /// `components/(f_max - f_min)`). Default: 200.
+    #[serde(default)]
+    pub components: Option<usize>,
+    /// Seed of the random phases (the same sea for the same seed). Default: 0.
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Lowest and highest frequency generated \[Hz\]. Default: `[0.5/T_p, 2.5/T_p]`.
+    #[serde(default)]
+    pub frequencies: Option<[f64; 2]>,
 }
 
 /// A free (floating) rigid body: its mass properties, constraints, initial velocity

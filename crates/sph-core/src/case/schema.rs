@@ -45,6 +45,9 @@ pub struct Case {
     /// A body force besides gravity, varying in space and time.
     #[serde(default)]
     pub forcing: Option<ForcingConfig>,
+    /// Damping zones that absorb waves at the ends of a flume.
+    #[serde(default)]
+    pub absorber: Vec<AbsorberConfig>,
     #[serde(default)]
     pub scheme: SchemeConfig,
     pub time: TimeConfig,
@@ -325,6 +328,33 @@ fn default_max_mach() -> f64 {
 
 fn default_max_density_variation() -> f64 {
     0.2
+}
+
+/// A damping zone along x: every fluid particle's velocity relaxes toward rest,
+/// `du/dt = -β w(ξ) u`, with `ξ = (x - from)/(to - from)` and the weight
+/// `w = 10ξ³ - 15ξ⁴ + 6ξ⁵` rising smoothly from 0 at `from` to 1 at `to` (1 beyond,
+/// 0 before), so that waves entering it are damped without reflecting from its start
+/// (make it at least one wavelength long).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsorberConfig {
+    /// Where the damping starts \[m\] (x).
+    pub from: f64,
+    /// Where it reaches its full rate \[m\] (x; below `from` for a zone toward -x).
+    pub to: f64,
+    /// The full rate β \[1/s\]. Default: `√(2π g / |to - from|)`, the frequency of a
+    /// deep-water wave as long as the zone.
+    #[serde(default)]
+    pub rate: Option<f64>,
+}
+
+impl Case {
+    /// The full rate β of an absorber (its own or the default).
+    pub fn absorber_rate(&self, a: &AbsorberConfig) -> f64 {
+        let g = self.gravity().iter().map(|g| g * g).sum::<f64>().sqrt();
+        a.rate
+            .unwrap_or_else(|| (2.0 * std::f64::consts::PI * g / (a.to - a.from).abs()).sqrt())
+    }
 }
 
 /// A body force per unit mass [m/s²] on the fluid, added to gravity: one expression per

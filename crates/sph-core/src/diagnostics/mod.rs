@@ -7,10 +7,12 @@
 //! - Probes interpolate the fluid pressure with a Shepard-normalised kernel sum,
 //!   `p(x) = Σ_f p_f W(x - x_f) V_f / Σ_f W(x - x_f) V_f` (0 where no fluid is in reach).
 //! - Face sensors on the walls, averaged and low-pass filtered ([`sensors`]).
+//! - Wave gauges: the free surface's elevation on vertical lines ([`gauges`]).
 //! - The stability guard ([`guard`]) and the count of fluid inside walls ([`crossings`]).
 
 pub mod budget;
 mod crossings;
+pub mod gauges;
 mod guard;
 pub mod sensors;
 pub mod series;
@@ -108,6 +110,29 @@ pub fn probe_pressure<const D: usize>(
         }
     });
     (den > 0.0).then(|| num / den)
+}
+
+/// The fluid's kernel sum `Γ(x) = Σ_f W(x - x_f) V_f` at `point` (0 where no fluid is
+/// in reach).
+pub fn fluid_fraction<const D: usize>(
+    model: &dyn Model<D>,
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+) -> f64 {
+    let r_max = model.support_radius();
+    let mut sum = 0.0;
+    list.for_candidates(point, |j| {
+        if p.kind[j] != Kind::Fluid {
+            return;
+        }
+        let r = domain.separation(point, &p.x[j]).norm();
+        if r < r_max {
+            sum += model.w(r) * p.mass[j] / p.rho[j];
+        }
+    });
+    sum
 }
 
 /// Largest fluid coordinate along `axis` (the leading edge of a surge).

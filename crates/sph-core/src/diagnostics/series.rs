@@ -4,6 +4,7 @@
 //! comes through [`Measure`], which the simulation implements.
 
 use super::budget::EnergyBudget;
+use super::gauges::Gauge;
 use super::sensors::Sensor;
 use super::Energies;
 use crate::boundary::bodies::{Body, Load};
@@ -31,6 +32,8 @@ pub trait Measure<const D: usize> {
     /// Shepard-interpolated pressures at `points` (`None` where no fluid is in reach),
     /// with the pressures brought up to date first.
     fn probe_pressures(&mut self, points: &[Vector<D>]) -> Vec<Option<f64>>;
+    /// The fluid's kernel sum Γ at `points`.
+    fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64>;
     /// Largest fluid coordinate along `axis`.
     fn surge_front(&self, axis: usize) -> f64;
     /// The fluid's load on each body, in case order.
@@ -81,6 +84,9 @@ pub fn observers<const D: usize>(case: &Case, bodies: &[Body]) -> Vec<Box<dyn Ob
     for s in &diag.sensors {
         let sensor = Sensor::new(s, case.dx(), case.series_interval());
         list.push(Box::new(sensor));
+    }
+    for g in &diag.gauges {
+        list.push(Box::new(Gauge::<D>::new(case, g)));
     }
     if let Some(axis) = diag.surge_front_axis {
         list.push(Box::new(SurgeFront { axis }));
@@ -266,6 +272,16 @@ impl<const D: usize> Observer<D> for Sensor<D> {
         if let Some(f) = &mut self.filter {
             f.state = state;
         }
+    }
+}
+
+/// `<name>_elevation`: the free surface's height above the still level.
+impl<const D: usize> Observer<D> for Gauge<D> {
+    fn header(&self, out: &mut Vec<String>) {
+        out.push(format!("{}_elevation", self.name));
+    }
+    fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
+        out.push(self.elevation(&run.fluid_fractions(&self.points)));
     }
 }
 

@@ -81,7 +81,8 @@ impl<const D: usize> Motions<D> {
             let (drive, solidity) = match (motion.motion, motion.prescribed, motion.free) {
                 (MotionChoice::Prescribed, Some(table), _) => {
                     let key = format!("{}.prescribed", motion.key);
-                    let m = PrescribedMotion::new(key, table, case.time.end)?;
+                    let g = case.gravity().iter().map(|g| g * g).sum::<f64>().sqrt();
+                    let m = PrescribedMotion::new(key, table, case.time.end, g)?;
                     (Drive::Prescribed(m), None)
                 }
                 (MotionChoice::Free, _, Some(_)) => {

@@ -1,6 +1,7 @@
 //! A prescribed rigid motion: the pivot's displacement and the rotation about it as
-//! expressions of time (exmex), differentiated exactly once and twice, with an
-//! optional smooth-step ramp (see `PrescribedMotion::ramp_at`).
+//! expressions of time (exmex), differentiated exactly once and twice, columns of a
+//! table, or a wave maker's motion ([`crate::waves::paddle`]), with an optional
+//! smooth-step ramp (see `PrescribedMotion::ramp_at`).
 
 use super::rigid::{angular_rates, Pose};
 use super::table::{self, Spline};
@@ -8,15 +9,18 @@ use crate::case::expression::{named_values, Compiled, Variables};
 use crate::case::PrescribedConfig;
 use crate::error::{Result, SphError};
 use crate::particles::Vector;
+use crate::waves::paddle::PaddleSignal;
 use nalgebra::{Rotation3, Vector3};
 use std::path::Path;
 
 /// One component of a motion as a function of t, with its first and second
-/// derivatives: an expression differentiated exactly, or a column of a table.
+/// derivatives: an expression differentiated exactly, a column of a table, or a wave
+/// maker's coordinate.
 enum Signal {
     /// `f`, `f'`, `f''` (boxed: a parsed expression is large).
     Expression(Box<[Compiled; 3]>),
     Table(Spline),
+    Paddle(PaddleSignal),
 }
 
 impl Signal {
@@ -40,6 +44,7 @@ impl Signal {
                 f[2].value(&[], t, scratch),
             ],
             Signal::Table(spline) => spline.at(t),
+            Signal::Paddle(paddle) => paddle.at(t),
         };
         [
             s[0] * f,
@@ -63,20 +68,37 @@ pub struct PrescribedMotion<const D: usize> {
 
 impl<const D: usize> PrescribedMotion<D> {
     /// Parses the table `key` (its lengths were checked with the case), reading its
-    /// `table` file for a run that ends at `end`.
-    pub fn new(key: String, config: &PrescribedConfig, end: f64) -> Result<Self> {
-        let (displacement, rotation) = match &config.table {
-            Some(file) => Self::columns(&key, config, Path::new(file), end)?,
-            None => Self::expressions(&key, config)?,
+    /// `table` file for a run that ends at `end`; `g` is the magnitude of gravity (wave
+    /// makers).
+    pub fn new(key: String, config: &PrescribedConfig, end: f64, g: f64) -> Result<Self> {
+        let (displacement, rotation) = match (&config.table, &config.waves) {
+            (Some(file), _) => Self::columns(&key, config, Path::new(file), end)?,
+            (None, Some(waves)) => Self::wave_maker(PaddleSignal::new(&waves.maker(g), g, D)),
+            (None, None) => Self::expressions(&key, config)?,
         };
+        let wave_period = config.waves.as_ref().map(|w| w.period(g));
         let pivot = config.pivot.as_deref().unwrap_or(&[0.0; 3]);
         Ok(Self {
             pivot: Vector::from_fn(|d, _| pivot[d]),
             displacement,
             rotation,
-            ramp: config.ramp.unwrap_or(0.0),
+            ramp: (config.ramp.or(wave_period.map(|t| 2.0 * t))).unwrap_or(0.0),
             key,
         })
+    }
+
+    /// A piston's displacement along x, or a flap's rotation (2D about z, 3D about y).
+    fn wave_maker(signal: PaddleSignal) -> (Vec<Signal>, Vec<Signal>) {
+        if !signal.turns() {
+            return (vec![Signal::Paddle(signal)], Vec::new());
+        }
+        let rotation = if D == 2 {
+            vec![Signal::Paddle(signal)]
+        } else {
+            let zero = || Signal::Paddle(PaddleSignal::zero());
+            vec![zero(), Signal::Paddle(signal), zero()]
+        };
+        (Vec::new(), rotation)
     }
 
     /// The displacement and rotation expressions of the table `key`.
@@ -222,7 +244,7 @@ mod tests {
 
     fn motion<const D: usize>(toml: &str) -> PrescribedMotion<D> {
         let config: PrescribedConfig = toml::from_str(toml).unwrap();
-        PrescribedMotion::new("wall[0].prescribed".into(), &config, 1.0).unwrap()
+        PrescribedMotion::new("wall[0].prescribed".into(), &config, 1.0, 9.81).unwrap()
     }
 
     #[test]

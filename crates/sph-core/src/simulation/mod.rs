@@ -25,7 +25,7 @@ use crate::diagnostics::{self, Energies};
 use crate::distributed::{owns_fluid, Ranks};
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
-use crate::forcing::BodyForce;
+use crate::forcing::Forcing;
 use crate::geometry;
 use crate::motion::{rigid::Pose, Motions};
 use crate::particles::{Kind, Particles, Vector};
@@ -91,7 +91,7 @@ impl<const D: usize> Simulation<D> {
         setup.particles.keep_shift_velocity(shifts);
         check_inflow_speeds(&case, setup.eos.c0)?;
         let open = OpenBoundaries::of(&case, &setup.particles, &setup.domain, &setup.eos)?;
-        let forcing = BodyForce::of(&case, &setup.particles)?;
+        let forcing = Forcing::of(&case, &setup.particles)?;
         let motions = Motions::of(
             &case,
             &setup.bodies,
@@ -412,6 +412,25 @@ impl<const D: usize> Simulation<D> {
         sums.chunks(2)
             .map(|c| (c[1] > 0.0).then_some(c[0]))
             .collect()
+    }
+
+    /// The fluid's kernel sum Γ at `points` (see [`diagnostics::fluid_fraction`]); in a
+    /// split run each point's owner sums it (collective).
+    pub fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64> {
+        let s = &self.stepper;
+        let gamma = |x: &Vector<D>| {
+            let p = self.particles();
+            diagnostics::fluid_fraction(s.model.as_ref(), p, &s.list, &s.domain, x)
+        };
+        let Some(ranks) = self.ranks() else {
+            return points.iter().map(gamma).collect();
+        };
+        let mine = |x: &Vector<D>| ranks.decomposition().owner(x) == ranks.rank();
+        let mut sums: Vec<f64> = (points.iter())
+            .map(|x| if mine(x) { gamma(x) } else { 0.0 })
+            .collect();
+        ranks.sum(&mut sums);
+        sums
     }
 
     /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first);

@@ -9,7 +9,7 @@ use crate::diagnostics::{self, budget::EnergyBudget};
 use crate::distributed::Ranks;
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
-use crate::forcing::BodyForce;
+use crate::forcing::Forcing;
 use crate::motion::Motions;
 use crate::neighbours::{ListPolicy, NeighbourList};
 use crate::particles::{Kind, Particles, Vector};
@@ -51,7 +51,7 @@ pub struct Stepper<const D: usize> {
     /// Inflow and outflow buffers, when the case has any.
     pub(super) open: Option<OpenBoundaries<D>>,
     /// The body force besides gravity, when the case has one.
-    pub(super) forcing: Option<BodyForce<D>>,
+    pub(super) forcing: Option<Forcing<D>>,
     /// The moving bodies, when the case has any.
     pub(super) motions: Option<Motions<D>>,
     /// This process's share of a run split over several.
@@ -74,7 +74,7 @@ impl<const D: usize> Stepper<D> {
         control: TimeStepControl,
         domain: Domain<D>,
         open: Option<OpenBoundaries<D>>,
-        forcing: Option<BodyForce<D>>,
+        forcing: Option<Forcing<D>>,
         motions: Option<Motions<D>>,
     ) -> Self {
         let integrator: Box<dyn TimeIntegrator<D>> = match case.scheme.integrator {

@@ -20,7 +20,7 @@
 use crate::boundary::open::OpenBoundaries;
 use crate::distributed::Ranks;
 use crate::domain::Domain;
-use crate::forcing::BodyForce;
+use crate::forcing::Forcing;
 use crate::motion::free::{FreeBody, Rate};
 use crate::motion::Motions;
 use crate::neighbours::NeighbourList;
@@ -37,8 +37,8 @@ pub struct Context<'a, const D: usize> {
     /// (their inflow velocity is held over the step).
     pub open: Option<&'a OpenBoundaries<D>>,
     pub time: f64,
-    /// The case's body force field besides gravity, when it has one.
-    pub forcing: Option<&'a BodyForce<D>>,
+    /// The case's body force and absorbers, when it has any.
+    pub forcing: Option<&'a Forcing<D>>,
     /// The moving bodies, placed at each evaluation's time, when the case has any; its
     /// free bodies take the fluid's load after each evaluation.
     pub motions: Option<&'a mut Motions<D>>,

@@ -3,6 +3,7 @@
 
 use crate::case::checks::{column_name, components, positive};
 use crate::case::schema::*;
+use crate::case::MAX_GAUGE_SAMPLES;
 use crate::error::{Result, SphError};
 
 impl Case {
@@ -65,6 +66,49 @@ impl Case {
                     ),
                 ));
             }
+        }
+        Ok(())
+    }
+
+    /// A gauge needs a plain name of its own, a horizontal position and a vertical
+    /// line from bottom to top (its own or the domain's or tanks'), at most
+    /// [`MAX_GAUGE_SAMPLES`] samples of Δx/4 long.
+    pub(super) fn check_gauge(&self, k: usize) -> Result<()> {
+        let gauges = &self.diagnostics.gauges;
+        let g = &gauges[k];
+        let key = |what: &str| format!("diagnostics.gauges[{k}].{what}");
+        if !column_name(&g.name) || gauges[..k].iter().any(|o| o.name == g.name) {
+            return Err(SphError::invalid(
+                key("name"),
+                format!("{:?}", g.name),
+                "a name no other gauge has: a letter, then letters, digits or _",
+            ));
+        }
+        components(&key("position"), &g.position, self.dimension - 1)?;
+        let Some([bottom, top]) = self.gauge_line(g) else {
+            return Err(SphError::invalid(
+                key("bottom"),
+                "none",
+                "the bottom and top of the gauge's line (no [domain] or [[tank]] gives them)",
+            ));
+        };
+        let samples = (top - bottom) / (0.25 * self.dx());
+        if !(bottom.is_finite() && top.is_finite() && samples >= 1.0) {
+            return Err(SphError::invalid(
+                key("top"),
+                top,
+                format!("a top above the bottom {bottom} by Δx/4 at least"),
+            ));
+        }
+        if samples > MAX_GAUGE_SAMPLES as f64 {
+            return Err(SphError::invalid(
+                key("top"),
+                top,
+                format!(
+                    "a line from the bottom {bottom} of at most {} samples of Δx/4",
+                    MAX_GAUGE_SAMPLES
+                ),
+            ));
         }
         Ok(())
     }

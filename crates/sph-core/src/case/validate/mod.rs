@@ -27,6 +27,7 @@ impl Case {
         self.validate_domain()?;
         self.validate_initial()?;
         self.validate_forcing()?;
+        self.validate_absorbers()?;
         self.check_particle_count()?;
         self.validate_scheme()?;
         self.validate_run_controls()?;
@@ -187,6 +188,12 @@ impl Case {
         }
         for k in 0..self.diagnostics.sensors.len() {
             self.check_sensor(k)?;
+        }
+        for k in 0..self.diagnostics.gauges.len() {
+            self.check_gauge(k)?;
+        }
+        if let Some(level) = self.diagnostics.still_level {
+            finite("diagnostics.still_level", level)?;
         }
         self.check_body_names()?;
         if let Some(a) = self.diagnostics.surge_front_axis {

@@ -3,7 +3,10 @@
 //! yet is refused in one line.
 
 use crate::case::checks::{components, finite, non_negative, positive};
-use crate::case::motion::{BodyMotion, FreeConfig, MotionChoice, PrescribedConfig, SpringConfig};
+use crate::case::motion::{
+    BodyMotion, FreeConfig, MotionChoice, PaddleChoice, PrescribedConfig, SpectrumConfig,
+    SpringConfig, WavesConfig,
+};
 use crate::case::schema::*;
 use crate::error::{Result, SphError};
 
@@ -84,6 +87,23 @@ impl Case {
     fn check_prescribed(&self, key: &str, m: &PrescribedConfig) -> Result<()> {
         let d = self.dimension;
         let key = format!("{key}.prescribed");
+        if let Some(waves) = &m.waves {
+            let other = [
+                ("table", m.table.is_some()),
+                ("displacement", m.displacement.is_some()),
+            ]
+            .into_iter()
+            .chain([("rotation", m.rotation.is_some())])
+            .find(|(_, given)| *given);
+            if let Some((name, _)) = other {
+                return Err(SphError::invalid(
+                    format!("{key}.{name}"),
+                    "given",
+                    "either a wave maker (waves) or a motion of its own, not both",
+                ));
+            }
+            self.check_waves(&format!("{key}.waves"), waves, m.pivot.is_some())?;
+        }
         if m.table.is_some() && (m.displacement.is_some() || m.rotation.is_some()) {
             return Err(SphError::invalid(
                 format!("{key}.table"),
@@ -121,6 +141,136 @@ impl Case {
         }
         Ok(())
     }
+}
+
+impl Case {
+    /// A wave maker's table: a depth, and either regular waves (a height with one of
+    /// period and wavelength, below the breaking limit) or a spectrum; a flap's hinge.
+    fn check_waves(&self, key: &str, w: &WavesConfig, pivot: bool) -> Result<()> {
+        positive(&format!("{key}.depth"), w.depth)?;
+        let g = self.gravity().iter().map(|g| g * g).sum::<f64>().sqrt();
+        positive("fluid.gravity (magnitude, for a wave maker)", g)?;
+        if w.paddle == PaddleChoice::Flap {
+            if !pivot {
+                return Err(SphError::invalid(
+                    format!("{key}.paddle"),
+                    "\"flap\"",
+                    "the flap's hinge as the table's pivot",
+                ));
+            }
+            let hinge = w.hinge_height.unwrap_or(0.0);
+            finite(&format!("{key}.hinge_height"), hinge)?;
+            if hinge >= w.depth {
+                return Err(SphError::invalid(
+                    format!("{key}.hinge_height"),
+                    hinge,
+                    format!("a hinge below the still-water level (depth {})", w.depth),
+                ));
+            }
+        }
+        match &w.spectrum {
+            Some(sea) => check_spectrum(key, w, sea),
+            None => check_regular(key, w, g),
+        }
+    }
+}
+
+/// Regular waves: height, period or wavelength, order; refused above the breaking
+/// limit `H/L = 0.142 tanh kd` (Miche 1944).
+fn check_regular(key: &str, w: &WavesConfig, g: f64) -> Result<()> {
+    let Some(height) = w.height else {
+        return Err(SphError::invalid(
+            format!("{key}.height"),
+            "none",
+            "the wave height (or a spectrum for an irregular sea)",
+        ));
+    };
+    positive(&format!("{key}.height"), height)?;
+    match (w.period, w.wavelength) {
+        (Some(t), None) => positive(&format!("{key}.period"), t)?,
+        (None, Some(l)) => positive(&format!("{key}.wavelength"), l)?,
+        _ => {
+            return Err(SphError::invalid(
+                format!("{key}.period"),
+                format!("{:?} with wavelength {:?}", w.period, w.wavelength),
+                "one of period and wavelength",
+            ))
+        }
+    }
+    let order = w.order();
+    if !(1..=2).contains(&order) || (order == 2 && w.paddle == PaddleChoice::Flap) {
+        return Err(SphError::invalid(
+            format!("{key}.order"),
+            order,
+            "1, or 2 for a piston (a flap's second-order motion is not built)",
+        ));
+    }
+    let omega = w.angular_frequency(g);
+    let k = crate::waves::theory::wavenumber(omega, w.depth, g);
+    let limit = 0.142 * (k * w.depth).tanh() * 2.0 * std::f64::consts::PI / k;
+    if height >= limit {
+        return Err(SphError::invalid(
+            format!("{key}.height"),
+            height,
+            format!(
+                "a height below the breaking limit 0.142 L tanh(kd) = {limit:.4e} m (L = {:.4e} m)",
+                2.0 * std::f64::consts::PI / k
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// An irregular sea: its parameters, and no regular-wave keys beside it.
+fn check_spectrum(key: &str, w: &WavesConfig, sea: &SpectrumConfig) -> Result<()> {
+    let regular = [
+        ("height", w.height.is_some()),
+        ("period", w.period.is_some()),
+    ]
+    .into_iter()
+    .chain([
+        ("wavelength", w.wavelength.is_some()),
+        ("order", w.order.is_some()),
+    ])
+    .find(|(_, given)| *given);
+    if let Some((name, _)) = regular {
+        return Err(SphError::invalid(
+            format!("{key}.{name}"),
+            "given",
+            "regular-wave keys or a spectrum, not both (the sea is made to first order)",
+        ));
+    }
+    let key = format!("{key}.spectrum");
+    positive(&format!("{key}.significant_height"), sea.significant_height)?;
+    positive(&format!("{key}.peak_period"), sea.peak_period)?;
+    if let Some(gamma) = sea.gamma {
+        if !(1.0..=20.0).contains(&gamma) {
+            return Err(SphError::invalid(
+                format!("{key}.gamma"),
+                gamma,
+                "a peak enhancement in [1, 20]",
+            ));
+        }
+    }
+    if let Some(n) = sea.components {
+        if !(1..=10_000).contains(&n) {
+            return Err(SphError::invalid(
+                format!("{key}.components"),
+                n,
+                "1 to 10000 components",
+            ));
+        }
+    }
+    if let Some([lo, hi]) = sea.frequencies {
+        if !(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi) {
+            return Err(SphError::invalid(
+                format!("{key}.frequencies"),
+                format!("[{lo}, {hi}]"),
+                "[f_min, f_max] with 0 < f_min < f_max (Hz)",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `texts` holds `n` expressions.

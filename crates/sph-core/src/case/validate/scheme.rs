@@ -1,4 +1,4 @@
-//! Checks of the scheme's options and of the body force: coefficients in range, the
+//! Checks of the scheme's options, of the body force and of the absorbers: coefficients in range, the
 //! viscosity a choice needs, and the flows δ-LES-SPH is offered for.
 
 use crate::case::checks::{finite, non_negative, positive};
@@ -7,6 +7,31 @@ use crate::case::shapes::Role;
 use crate::error::{Result, SphError};
 
 impl Case {
+    /// Each absorber's zone has a length and its rate is positive (gravity gives the
+    /// default); the energy budget does not count their power yet.
+    pub(super) fn validate_absorbers(&self) -> Result<()> {
+        for (k, a) in self.absorber.iter().enumerate() {
+            finite(&format!("absorber[{k}].from"), a.from)?;
+            finite(&format!("absorber[{k}].to"), a.to)?;
+            if a.to == a.from {
+                return Err(SphError::invalid(
+                    format!("absorber[{k}].to"),
+                    a.to,
+                    "a zone of some length: `to` different from `from`",
+                ));
+            }
+            positive(&format!("absorber[{k}].rate"), self.absorber_rate(a))?;
+            if self.diagnostics.energy_budget {
+                return Err(SphError::invalid(
+                    "diagnostics.energy_budget",
+                    "true",
+                    "false beside an absorber (its dissipated power is not in the budget)",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// One expression per component and finite constants; the expressions themselves
     /// are parsed when the run is built.
     pub(super) fn validate_forcing(&self) -> Result<()> {

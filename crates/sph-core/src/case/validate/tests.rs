@@ -351,3 +351,95 @@ fn free_bodies_need_a_mass_and_consistent_constraints() {
     let tensor = crate::motion::free::inertia_tensor(&[1.0, 1.0, 1.0, 2.0, 0.0, 0.0]);
     assert!(tensor.symmetric_eigenvalues().min() < 0.0);
 }
+
+/// MINIMAL with a wave maker `[wall]` whose `waves` table holds `waves`, and `extra`.
+fn wave_maker(waves: &str, extra: &str) -> String {
+    MINIMAL.to_string()
+        + "[[wall]]\nlo = [0.3, 0.0]\nhi = [0.34, 0.3]\nmotion = \"prescribed\"\n\
+           [wall.prescribed]\n"
+        + extra
+        + "[wall.prescribed.waves]\n"
+        + waves
+}
+
+#[test]
+fn wave_makers_are_checked_in_one_line() {
+    let regular = "paddle = \"piston\"\ndepth = 0.1\nheight = 0.01\nperiod = 1.0\n";
+    assert!(Case::from_toml_str(&wave_maker(regular, "")).is_ok());
+    for (waves, extra, expected) in [
+        (
+            "paddle = \"piston\"\ndepth = 0.1\nheight = 0.09\nperiod = 1.0\n",
+            "",
+            "wall[0].prescribed.waves.height = 0.09: expected a height below the breaking \
+             limit 0.142 L tanh(kd) = 7.7",
+        ),
+        (
+            "paddle = \"piston\"\ndepth = 0.1\nheight = 0.01\n",
+            "",
+            "wall[0].prescribed.waves.period = None with wavelength None: expected one of \
+             period and wavelength",
+        ),
+        (
+            "paddle = \"flap\"\ndepth = 0.1\nheight = 0.01\nperiod = 1.0\n",
+            "",
+            "wall[0].prescribed.waves.paddle = \"flap\": expected the flap's hinge as the \
+             table's pivot",
+        ),
+        (
+            "paddle = \"flap\"\ndepth = 0.1\nheight = 0.01\nperiod = 1.0\norder = 2\n",
+            "pivot = [0.3, 0.0]\n",
+            "wall[0].prescribed.waves.order = 2: expected 1, or 2 for a piston",
+        ),
+        (
+            regular,
+            "displacement = [\"0\", \"0\"]\n",
+            "wall[0].prescribed.displacement = given: expected either a wave maker",
+        ),
+        (
+            "paddle = \"piston\"\ndepth = 0.1\nheight = 0.01\n\
+             spectrum = { significant_height = 0.01, peak_period = 1.0 }\n",
+            "",
+            "wall[0].prescribed.waves.height = given: expected regular-wave keys or a spectrum",
+        ),
+        (
+            "paddle = \"piston\"\ndepth = 0.1\n\
+             spectrum = { significant_height = 0.01, peak_period = 1.0, frequencies = [2.0, 1.0] }\n",
+            "",
+            "wall[0].prescribed.waves.spectrum.frequencies = [2, 1]: expected [f_min, f_max]",
+        ),
+    ] {
+        let e = error_of(&wave_maker(waves, extra));
+        assert!(e.starts_with(expected), "{e}\n expected: {expected}");
+    }
+}
+
+#[test]
+fn gauges_and_absorbers_are_checked_in_one_line() {
+    let gauge = |g: &str| MINIMAL.to_string() + "[[diagnostics.gauges]]\n" + g;
+    assert!(Case::from_toml_str(&gauge("name = \"g\"\nposition = [0.1]\n")).is_ok());
+    for (text, expected) in [
+        (
+            gauge("name = \"g\"\nposition = [0.1, 0.2]\n"),
+            "diagnostics.gauges[0].position = [0.1, 0.2]: expected 1",
+        ),
+        (
+            gauge("name = \"g\"\nposition = [0.1]\nbottom = 0.2\ntop = 0.1\n"),
+            "diagnostics.gauges[0].top = 0.1: expected a top above the bottom 0.2",
+        ),
+        (
+            gauge("name = \"g\"\nposition = [0.1]\nbottom = 0.0\ntop = 1e6\n"),
+            "diagnostics.gauges[0].top = 1000000: expected a line from the bottom 0 of at most",
+        ),
+        (
+            MINIMAL.to_string() + "[[absorber]]\nfrom = 0.3\nto = 0.3\n",
+            "absorber[0].to = 0.3: expected a zone of some length",
+        ),
+        (
+            MINIMAL.to_string() + "[[absorber]]\nfrom = 0.3\nto = 0.5\nrate = -1.0\n",
+            "absorber[0].rate = -1: expected a positive number",
+        ),
+    ] {
+        let e = error_of(&text);
+        assert!(e.starts_with(expected), "{e}\n expected: {expected}");
+    }
+}

@@ -1,7 +1,7 @@
 """Wave heights, periods and second harmonics at the gauges of a wave-flume run,
 against linear and second-order theory (docs/validation/wave_flume.md).
 
-    python3 scripts/wave_flume.py RUN_FOLDER [--window T0 T1]
+    python3 scripts/wave_flume.py RUN_FOLDER [--window T0 T1] [--plot PNG]
 
 Reads RUN_FOLDER/timeseries.csv and the case's wave maker from RUN_FOLDER/case.toml.
 At each gauge `<name>_elevation` it fits a mean and three harmonics of the wave
@@ -10,7 +10,10 @@ the last 4 periods of the run), and prints the height 2|A1| against H and the me
 zero-up-crossing period against T; with three or more gauges `g*` the second
 harmonic split into its bound part (c A1(x)²) and its free part (the wavenumber of
 2ω); with two or more gauges `r*` (L/10 and about L/4 apart) the first harmonic split
-into incident and reflected waves, and the reflection coefficient.
+into incident and reflected waves, and the reflection coefficient. For an irregular
+sea (a `spectrum` wave maker) it gives H_s = 4√m0 and T_p at each gauge over one
+repeat period of the paddle's signal (the last of the run), and with --plot draws
+the measured spectra over the target.
 """
 import argparse
 import csv
@@ -59,24 +62,85 @@ def up_crossing_period(t, eta):
     return (ups[-1] - ups[0]) / (len(ups) - 1) if len(ups) > 1 else float("nan")
 
 
+def jonswap(f, hs, tp, gamma, band):
+    """The JONSWAP density [m²/Hz] at f, scaled so that 4√m0 = H_s over `band`."""
+    def shape(f):
+        fp = 1 / tp
+        sigma = np.where(f <= fp, 0.07, 0.09)
+        r = np.exp(-((f - fp) ** 2) / (2 * sigma**2 * fp**2))
+        return f**-5.0 * np.exp(-1.25 * (fp / f) ** 4) * gamma**r
+    fine = np.linspace(band[0], band[1], 20001)
+    m0 = np.trapezoid(shape(fine), fine)
+    return shape(f) * (hs / 4) ** 2 / m0
+
+
+def irregular(args, case, sea, t, data, header, gauges):
+    """H_s = 4√m0 and T_p (peak of the periodogram smoothed over 3 bins) at each gauge
+    over one repeat period of the paddle's signal, against the target; with --plot a
+    figure of the measured spectra over the target's."""
+    tp, hs = sea["peak_period"], sea["significant_height"]
+    n = sea.get("components", 200)
+    band = sea.get("frequencies", [0.5 / tp, 2.5 / tp])
+    repeat = n / (band[1] - band[0])
+    t0, t1 = args.window if args.window else (t[-1] - repeat, t[-1])
+    dt = np.median(np.diff(t))
+    grid = np.arange(t0, t1, dt)
+    print(f"H_s = {hs} m, T_p = {tp} s, {n} components over [{band[0]:.3f}, {band[1]:.3f}] Hz "
+          f"(repeat {repeat:.2f} s); window [{t0:.2f}, {t1:.2f}] s")
+    spectra = {}
+    for name in gauges:
+        eta = np.interp(grid, t, data[:, header.index(f"{name}_elevation")])
+        eta = eta - eta.mean()
+        spec = np.abs(np.fft.rfft(eta)) ** 2 * 2 * dt / len(eta)
+        f = np.fft.rfftfreq(len(eta), dt)
+        smooth = np.convolve(spec, np.ones(3) / 3, mode="same")
+        inside = (f >= band[0]) & (f <= band[1])
+        fp = f[inside][np.argmax(smooth[inside])]
+        m0 = eta.var()
+        print(f"{name} x = {gauges[name]:.3f} m: H_s = {4 * math.sqrt(m0):.5f} m "
+              f"({4 * math.sqrt(m0) / hs - 1:+.2%}), T_p = {1 / fp:.4f} s ({1 / fp / tp - 1:+.2%})")
+        spectra[name] = (f, smooth)
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+        for name, (f, smooth) in spectra.items():
+            ax.plot(f, smooth, lw=1, label=f"{name} (x = {gauges[name]} m), 3-bin mean")
+        ff = np.linspace(band[0], band[1], 400)
+        ax.plot(ff, jonswap(ff, hs, tp, sea.get("gamma", 3.3), band), "k--", lw=1.2,
+                label="target JONSWAP")
+        ax.set_xlim(0, 1.2 * band[1])
+        ax.set_xlabel("f [Hz]")
+        ax.set_ylabel("S(f) [m²/Hz]")
+        ax.set_title(f"{Path(args.run).name}: H_s = {hs} m, T_p = {tp} s")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        fig.savefig(args.plot, dpi=120)
+        print(f"wrote {args.plot}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run")
     ap.add_argument("--window", nargs=2, type=float)
+    ap.add_argument("--plot", help="irregular seas: a PNG of the spectra")
     args = ap.parse_args()
     run = Path(args.run)
     case = tomllib.loads((run / "case.toml").read_text())
     walls = case.get("wall", []) + case.get("shape", [])
     waves = next(w["prescribed"]["waves"] for w in walls if "waves" in w.get("prescribed", {}))
-    depth, height = waves["depth"], waves["height"]
-    omega = 2 * math.pi / waves["period"]
-    k = wavenumber(omega, depth)
-    k2 = wavenumber(2 * omega, depth)
     gauges = {g["name"]: g["position"][0] for g in case["diagnostics"]["gauges"]}
     with open(run / "timeseries.csv") as f:
         rows = list(csv.reader(f))
     header, data = rows[0], np.array(rows[1:], dtype=float)
     t = data[:, header.index("time")]
+    if "spectrum" in waves:
+        return irregular(args, case, waves["spectrum"], t, data, header, gauges)
+    depth, height = waves["depth"], waves["height"]
+    omega = 2 * math.pi / waves["period"]
+    k = wavenumber(omega, depth)
+    k2 = wavenumber(2 * omega, depth)
     period = 2 * math.pi / omega
     t0, t1 = args.window if args.window else (t[-1] - 4 * period, t[-1])
     t1 = t0 + period * math.floor((t1 - t0) / period + 1e-9)

@@ -488,3 +488,36 @@ def test_a_free_body_falls_onto_the_water_and_reports_its_state():
     assert abs(closure) < 0.01 * lost, (closure, lost)
     # its walls did on the water the work the box lost
     assert abs(e["moving_work"] - lost) < 0.01 * lost, (e["moving_work"], lost)
+
+
+def test_a_wave_maker_moves_as_theory_says_and_gauges_read_the_surface(tmp_path):
+    case = example("wave_flume_2d", particles__spacing=0.05, time__end=0.2,
+                   time__output_interval=0.1, diagnostics__interval=0.05)
+    case["wall"][0]["lo"] = [-0.2, 0.0]  # the kernel support thick at this spacing
+    sim = ds.Simulation(case)
+    theory = ds.regular_wave(0.04, 1.625, 0.5)
+    assert abs(theory["kd"] - 1.0) < 1e-3
+    # after the two-period ramp the piston moves by S/2 sin ωt + X2 sin 2ωt (Madsen)
+    omega = 2 * np.pi / 1.625
+    t = np.array([0.0, 3.5, 4.0, 7.7])
+    paddle = sim.prescribed_motion(t)["paddle"]
+    expected = 0.5 * theory["piston_stroke"] * np.sin(omega * t) \
+        + theory["madsen_second_order"] * np.sin(2 * omega * t)
+    expected[0] = 0.0
+    np.testing.assert_allclose(paddle["position"][:, 0], expected, atol=1e-15)
+    assert paddle["position"].shape == (4, 2) and np.all(paddle["position"][:, 1] == 0.0)
+    assert abs(theory["piston_stroke"] / 0.04 - 1 / 0.9818) < 1e-3  # Biesel at kd = 1
+    # still water at its level, to a hundredth of the spacing
+    eta = sim.wave_elevation([3.0, 9.0])
+    assert np.all(np.abs(eta) < 5e-4), eta
+    with pytest.raises(ValueError, match=r"^positions\[0\] = \[1.0, 2.0\]: expected 1 coordinate"):
+        sim.wave_elevation([[1.0, 2.0]])
+    sim.run(out=tmp_path / "flume")
+    run = ds.load(tmp_path / "flume")
+    assert {"g1_elevation", "r3_elevation"} <= set(run.series)
+    assert np.all(np.abs(run.series["g1_elevation"]) < 5e-4)
+    from deltasph import plot
+    figures = plot.series(run)
+    lines = figures["gauges"].axes[0].get_lines()
+    crest = [ln for ln in lines if ln.get_label().startswith("target crest")][0]
+    np.testing.assert_allclose(crest.get_ydata()[0], 0.02 + theory["bound_second_harmonic"])

@@ -10,6 +10,7 @@ mod folder;
 mod measures;
 mod simulation;
 mod stepping;
+mod waves;
 
 use pyo3::prelude::*;
 
@@ -20,6 +21,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(folder::read_snapshot, m)?)?;
     m.add_function(wrap_pyfunction!(cli, m)?)?;
     m.add_function(wrap_pyfunction!(case_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(waves::regular_wave, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,12 +1,14 @@
 //! What Python reads off a running simulation beyond its state arrays: energies, the
-//! bodies' loads, pressure probes and the free surface, as dicts and arrays.
+//! bodies' loads, pressure probes, the free surface, wave elevations and prescribed
+//! motions, as dicts and arrays.
 
 use crate::arrays;
 use crate::simulation::rows;
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use sph_core::motion::rigid::Pose;
 use sph_core::Simulation;
 
 /// `kinetic`, `potential`, `internal`, `total`, `bodies` (the free bodies'), and
@@ -118,6 +120,60 @@ pub(crate) fn body_motions<'py, const D: usize>(
             "angular_velocity",
             PyArray1::from_vec(py, angular(pose.omega.as_slice())),
         )?;
+        dict.set_item(name, entry)?;
+    }
+    Ok(dict)
+}
+
+/// The free surface's elevation above `diagnostics.still_level` at `positions`: x
+/// values (2D) or (x, y) rows (3D).
+pub(crate) fn wave_elevation<'py, const D: usize>(
+    py: Python<'py>,
+    s: &Simulation<D>,
+    positions: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let rows: Vec<Vec<f64>> = match positions.extract::<Vec<Vec<f64>>>() {
+        Ok(rows) => rows,
+        Err(_) => (positions.extract::<Vec<f64>>()?.into_iter())
+            .map(|x| vec![x])
+            .collect(),
+    };
+    let values = (s.wave_elevations(&rows)).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(PyArray1::from_vec(py, values))
+}
+
+/// `{name: {"position": (M, D), "rotation": (M, 1|3), "velocity": (M, D),
+/// "angular_velocity": (M, 1|3)}}` of every body with a prescribed motion at `times`.
+pub(crate) fn prescribed_motion<'py, const D: usize>(
+    py: Python<'py>,
+    s: &Simulation<D>,
+    times: Vec<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    let Some(motions) = s.motions() else {
+        return Ok(dict);
+    };
+    let turned: &[usize] = if D == 2 { &[2] } else { &[0, 1, 2] };
+    let samples: Vec<Vec<Option<_>>> = times.iter().map(|&t| motions.scheduled_poses(t)).collect();
+    for (k, name) in s.moving_body_names().into_iter().enumerate() {
+        if samples.first().is_some_and(|row| row[k].is_none()) {
+            continue;
+        }
+        let poses: Vec<_> = samples.iter().filter_map(|row| row[k]).collect();
+        let rows = |f: &dyn Fn(&Pose<D>) -> Vec<f64>| {
+            let n = poses.first().map_or(0, |p| f(p).len());
+            let flat: Vec<f64> = poses.iter().flat_map(f).collect();
+            PyArray1::from_vec(py, flat).reshape([poses.len(), n])
+        };
+        let entry = PyDict::new(py);
+        entry.set_item("position", rows(&|p| p.pivot.as_slice().to_vec())?)?;
+        entry.set_item(
+            "rotation",
+            rows(&|p| turned.iter().map(|&a| p.phi[a]).collect())?,
+        )?;
+        entry.set_item("velocity", rows(&|p| p.velocity.as_slice().to_vec())?)?;
+        let omega = |p: &Pose<D>| turned.iter().map(|&a| p.omega[a]).collect();
+        entry.set_item("angular_velocity", rows(&omega)?)?;
         dict.set_item(name, entry)?;
     }
     Ok(dict)

@@ -513,6 +513,32 @@ impl PySimulation {
         each!(&self.solver, s => measures::body_motions(py, s))
     }
 
+    /// The prescribed motions (wave makers included) at ``times`` (array-like of
+    /// seconds, any times, not only the run's), by body name:
+    /// ``{name: {"position": (M, D), "rotation": (M, 1) or (M, 3), "velocity": (M, D),
+    /// "angular_velocity": (M, 1) or (M, 3)}}``, as :meth:`body_motions` gives them
+    /// now. Free bodies are left out (their motion is not known ahead).
+    fn prescribed_motion<'py>(
+        &self,
+        py: Python<'py>,
+        times: Vec<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        each!(&self.solver, s => measures::prescribed_motion(py, s, times))
+    }
+
+    /// The free surface's elevation [m] above ``diagnostics.still_level`` now, as wave
+    /// gauges read it (where the fluid's kernel sum crosses 1/2 on a vertical line; a
+    /// dry line reads its bottom): ``positions`` are x values (2D) or (x, y) rows
+    /// (3D); returns (M,). The lines run over the domain's or the tanks' height
+    /// (ValueError where the case gives neither).
+    fn wave_elevation<'py>(
+        &self,
+        py: Python<'py>,
+        positions: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        each!(&self.solver, s => measures::wave_elevation(py, s, positions))
+    }
+
     /// Pressure [Pa] interpolated (Shepard) from the fluid at ``points``: array-like
     /// (M, D), returning (M,); or one point (D,), returning (1,). A point with no
     /// fluid within the kernel support reads NaN (no fluid there, which is not zero

@@ -157,6 +157,17 @@ impl<const D: usize> Motions<D> {
         text
     }
 
+    /// Every moving body's pose at time `t` as its prescribed motion has it (`None`
+    /// for a free body, whose motion is not known ahead), in case order.
+    pub fn scheduled_poses(&self, t: f64) -> Vec<Option<Pose<D>>> {
+        (self.bodies.iter())
+            .map(|b| match &b.drive {
+                Drive::Prescribed(m) => Some(m.pose(t)),
+                Drive::Free(_) => None,
+            })
+            .collect()
+    }
+
     /// Every moving body's pose at time `t` (a free body's is its current one), in
     /// case order.
     pub fn poses(&self, t: f64) -> Vec<Pose<D>> {

@@ -433,6 +433,36 @@ impl<const D: usize> Simulation<D> {
         sums
     }
 
+    /// The free surface's elevation above `diagnostics.still_level` on the vertical
+    /// lines at `positions` (x in 2D, (x, y) in 3D), as gauges read it
+    /// ([`crate::diagnostics::gauges`]); refused where the case gives no vertical extent
+    /// for the lines (no `[domain]` or `[[tank]]`). Collective in a split run.
+    pub fn wave_elevations(&self, positions: &[Vec<f64>]) -> Result<Vec<f64>> {
+        let mut out = Vec::with_capacity(positions.len());
+        for (k, position) in positions.iter().enumerate() {
+            let config = crate::case::GaugeConfig {
+                name: format!("positions[{k}]"),
+                position: position.clone(),
+                bottom: None,
+                top: None,
+            };
+            let finite = position.iter().all(|v| v.is_finite());
+            if position.len() + 1 != D || !finite || self.case().gauge_line(&config).is_none() {
+                return Err(SphError::invalid(
+                    format!("positions[{k}]"),
+                    format!("{position:?}"),
+                    format!(
+                        "{} coordinate(s) of a vertical line within a [domain] or [[tank]]",
+                        D - 1
+                    ),
+                ));
+            }
+            let gauge = crate::diagnostics::gauges::Gauge::<D>::new(self.case(), &config);
+            out.push(gauge.elevation(&self.fluid_fractions(&gauge.points)));
+        }
+        Ok(out)
+    }
+
     /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first);
     /// `None` where no fluid is within the kernel support.
     pub fn probe_pressure(&self, point: &Vector<D>) -> Option<f64> {

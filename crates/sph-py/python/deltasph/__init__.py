@@ -16,7 +16,7 @@ reads one back, ``deltasph.plot`` draws it, ``ds.case_schema()`` is the case fil
 JSON Schema for editors.
 """
 
-from ._core import Simulation, __version__, case_schema
+from ._core import Simulation, __version__, case_schema, regular_wave
 from .errors import ConfigError, ConfigKeyError, InstabilityError
 from .runs import RunFolder, Snapshot, load
 
@@ -33,6 +33,7 @@ __all__ = [
     "InstabilityError",
     "RunFolder",
     "case_schema",
+    "regular_wave",
     "Snapshot",
     "load",
     "__version__",

@@ -124,6 +124,15 @@ class Simulation:
     def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,); NaN at
         a point with no fluid within the kernel support."""
+    def prescribed_motion(
+        self, times: npt.ArrayLike
+    ) -> dict[str, dict[str, npt.NDArray[np.float64]]]:
+        """Each prescribed body's (wave makers included) ``position`` (M, D),
+        ``rotation`` (M, 1|3), ``velocity`` (M, D) and ``angular_velocity`` (M, 1|3) at
+        ``times``."""
+    def wave_elevation(self, positions: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The free surface's elevation [m] above ``diagnostics.still_level`` on vertical
+        lines at x values (2D) or (x, y) rows (3D), as gauges read it; (M,)."""
     def free_surface(self) -> dict[str, npt.NDArray[Any]]:
         """Free-surface detection: ``on_surface`` (N,), ``normal`` (N, D), ``lambda`` (N,)."""
     def set_velocities(self, velocities: npt.NDArray[np.float64]) -> None:
@@ -147,3 +156,10 @@ def cli(args: list[str]) -> int:
 
 def case_schema() -> str:
     """The JSON Schema of the case file (what ``sph-cli schema`` prints)."""
+
+def regular_wave(
+    height: float, period: float, depth: float, gravity: float = 9.81, hinge_height: float = 0.0
+) -> dict[str, float]:
+    """``wavenumber``, ``wavelength``, ``kd``, ``bound_second_harmonic`` (Stokes's A2),
+    ``piston_stroke`` and ``flap_stroke`` (Biesel), ``madsen_second_order`` of regular
+    waves (docs/theory.md §14)."""

@@ -39,7 +39,29 @@ PANELS = [
     ("surge front", r"^surge_front$", "front [m]"),
     ("loads", r"_(pressure|viscous)_f[xyz]$|_moment_[xyz]$|_c[xyz]$",
      "force [N], moment [N m], coefficient"),
+    ("gauges", r"_elevation$", "elevation [m]"),
 ]
+
+
+def _wave_targets(case):
+    """The crest and trough of the regular waves a case's wave maker makes (Stokes's
+    second order: ±H/2 + A2), or None."""
+    from ._core import regular_wave
+
+    bodies = case.get("wall", []) + case.get("shape", []) + case.get("tank", [])
+    for body in bodies:
+        waves = body.get("prescribed", {}).get("waves")
+        if not waves or "height" not in waves:
+            continue
+        gravity = float(np.linalg.norm(case.get("fluid", {}).get("gravity", [0.0, -9.81])))
+        period = waves.get("period")
+        if period is None:
+            k = 2 * np.pi / waves["wavelength"]
+            period = 2 * np.pi / np.sqrt(gravity * k * np.tanh(k * waves["depth"]))
+        theory = regular_wave(waves["height"], period, waves["depth"], gravity)
+        half, a2 = 0.5 * waves["height"], theory["bound_second_harmonic"]
+        return half + a2, -half + a2
+    return None
 
 
 def _pyplot():
@@ -128,8 +150,8 @@ def snapshot(source, field="pressure", ax=None, spacing=None, cmap="viridis", sc
 
 def series(run):
     """Figures of the time series of a run folder (``ds.load(...)``), one per panel
-    that has columns: energy, power, probes, density, surge front, loads. Returns
-    ``{panel: Figure}``."""
+    that has columns: energy, power, probes, density, surge front, loads, gauges (with
+    the target crest and trough of a regular wave maker). Returns ``{panel: Figure}``."""
     plt = _pyplot()
     data = run.series
     t = data["time"]
@@ -141,6 +163,10 @@ def series(run):
         fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
         for c in columns:
             ax.plot(t, data[c], lw=1.0, label=c)
+        targets = _wave_targets(run.case) if title == "gauges" else None
+        for level, name in zip(targets or (), ("crest", "trough")):
+            ax.axhline(level, color="k", ls="--", lw=0.8,
+                       label=f"target {name} (Stokes II)")
         ax.set_xlabel("t [s]")
         ax.set_ylabel(ylabel)
         ax.set_title(f"{run.path.name}: {title}")

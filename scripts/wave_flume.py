@@ -12,8 +12,9 @@ harmonic split into its bound part (c A1(x)²) and its free part (the wavenumber
 2ω); with two or more gauges `r*` (L/10 and about L/4 apart) the first harmonic split
 into incident and reflected waves, and the reflection coefficient. For an irregular
 sea (a `spectrum` wave maker) it gives H_s = 4√m0 and T_p at each gauge over one
-repeat period of the paddle's signal (the last of the run), and with --plot draws
-the measured spectra over the target.
+repeat period of the paddle's signal (the last of the run). --plot draws the
+elevations against Stokes's crest and trough (regular waves) or the measured spectra
+over the target (irregular seas).
 """
 import argparse
 import csv
@@ -120,11 +121,37 @@ def irregular(args, case, sea, t, data, header, gauges):
         print(f"wrote {args.plot}")
 
 
+def plot_regular(args, run, t, data, header, gauges, main, height, k, depth, window):
+    """The elevation at the first, middle and last `g` gauge over the run, with the
+    Stokes crest and trough (±H/2 + A2) and the analysis window."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    names = list(gauges)
+    picks = sorted({main[0], main[len(main) // 2], main[-1]})
+    fig, axes = plt.subplots(len(picks), 1, figsize=(8, 2.2 * len(picks)), sharex=True,
+                             constrained_layout=True)
+    a2 = bound_second_harmonic(height, k, depth)
+    for ax, i in zip(np.atleast_1d(axes), picks):
+        name = names[i]
+        ax.plot(t, data[:, header.index(f"{name}_elevation")], lw=0.8, label=name)
+        for level in (0.5 * height + a2, -0.5 * height + a2):
+            ax.axhline(level, color="k", ls="--", lw=0.7)
+        ax.axvspan(*window, color="0.9", zorder=-1)
+        ax.set_ylabel("η [m]")
+        ax.set_title(f"{name}, x = {gauges[name]} m ({gauges[name] * k / (2 * math.pi):.2f} L); "
+                     "dashed: Stokes II crest and trough; grey: analysis window", fontsize=9)
+    np.atleast_1d(axes)[-1].set_xlabel("t [s]")
+    fig.savefig(args.plot, dpi=120)
+    print(f"wrote {args.plot}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run")
     ap.add_argument("--window", nargs=2, type=float)
-    ap.add_argument("--plot", help="irregular seas: a PNG of the spectra")
+    ap.add_argument("--plot", help="a PNG: gauges against the target (regular waves) or "
+                    "the spectra (irregular seas)")
     args = ap.parse_args()
     run = Path(args.run)
     case = tomllib.loads((run / "case.toml").read_text())
@@ -169,6 +196,16 @@ def main():
         theory = bound_second_harmonic(2 * np.mean(abs(b1)), k, depth)
         print(f"second harmonic: bound {bound:.5f} m (Stokes at the mean height {theory:.5f} m), "
               f"free {abs(free):.5f} m ({abs(free) / bound:.1%} of the bound)")
+    if main:
+        # the free part at each gauge with the bound one from Stokes: A2 - c A1²,
+        # c = A2_Stokes/a² (a real, positive ratio: the bound crest rides on the crest)
+        c = bound_second_harmonic(2.0, k, depth) / 1.0
+        for i in main:
+            f = a2[i] - c * a1[i] ** 2
+            print(f"  {list(gauges)[i]}: free second harmonic (A2 - Stokes) {abs(f):.5f} m, "
+                  f"{abs(f) / (c * abs(a1[i]) ** 2):.1%} of Stokes's bound")
+    if args.plot:
+        plot_regular(args, run, t, data, header, gauges, main, height, k, depth, (t0, t1))
     close = [n for n in gauges if n.startswith("r")]
     if len(close) >= 2:
         # the first harmonic at the r gauges as incident and reflected waves (Mansard &

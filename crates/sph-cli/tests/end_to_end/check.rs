@@ -14,6 +14,8 @@ fn every_example_passes_check() {
         "floating_buoy_3d",
         "hydrostatic_2d",
         "taylor_green_2d",
+        "wave_flume_2d",
+        "wave_flume_irregular_2d",
         "wedge_entry_2d",
     ] {
         let out = cli(&["check", &example(&format!("{name}.toml"))]);
@@ -105,6 +107,22 @@ fn check_reports_a_free_body_s_mass_and_draft() {
     assert!((mass / (400.0 * volume) - 1.0).abs() < 1e-3, "{line}");
     let draft = number_after("draft of ");
     assert!((draft / (0.4 * h) - 1.0).abs() < 1e-3, "{line}");
+}
+
+/// A wave maker's line: regular waves' kd, wavelength, steepness and stroke from
+/// linear theory (H = 0.04 m, T = 1.625 s in d = 0.5 m: kd = 1.0003, L = 3.1405 m,
+/// stroke H/(H/S) = 0.04/0.98206 m by Biesel's piston transfer).
+#[test]
+fn check_reports_a_wave_maker_s_waves() {
+    let out = cli(&["check", &example("wave_flume_2d.toml")]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = (text.lines())
+        .find(|l| l.trim_start().starts_with("waves:"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        line.contains("waves: piston, H = 0.04 m, T = 1.6250 s, order 2: kd = 1.0003, L = 3.1405 m, H/L = 1.27%, stroke 4.0729e-2 m"),
+        "{line}"
+    );
 }
 
 #[test]

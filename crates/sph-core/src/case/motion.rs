@@ -172,6 +172,39 @@ impl WavesConfig {
         })
     }
 
+    /// The waves in words: regular waves' kd, wavelength and the paddle's stroke (a
+    /// flap's at the still level), or the sea's band and components.
+    pub fn describe(&self, g: f64) -> String {
+        let maker = self.maker(g);
+        let paddle = match self.paddle {
+            PaddleChoice::Piston => "piston",
+            PaddleChoice::Flap => "flap",
+        };
+        if let Some(sea) = &self.spectrum {
+            let ([lo, hi], n) = (sea.band(), maker.components.len());
+            return format!(
+                "waves: {paddle}, JONSWAP H_s = {} m, T_p = {} s, {n} components over \
+                 [{lo:.4}, {hi:.4}] Hz (the signal repeats every {:.4e} s)",
+                sea.significant_height,
+                sea.peak_period,
+                n as f64 / (hi - lo),
+            );
+        }
+        let omega = self.angular_frequency(g);
+        let k = crate::waves::theory::wavenumber(omega, self.depth, g);
+        let height = self.height.unwrap_or(0.0);
+        format!(
+            "waves: {paddle}, H = {height} m, T = {:.4} s, order {}: kd = {:.4}, L = {:.4} m, \
+             H/L = {:.2}%, stroke {:.4e} m at the still level",
+            2.0 * PI / omega,
+            self.order(),
+            k * self.depth,
+            2.0 * PI / k,
+            100.0 * height * k / (2.0 * PI),
+            height / maker.paddle.height_over_stroke(k, self.depth)
+        )
+    }
+
     /// The (peak) period: the default ramp is two of them.
     pub fn period(&self, g: f64) -> f64 {
         match &self.spectrum {
@@ -182,13 +215,17 @@ impl WavesConfig {
 }
 
 impl SpectrumConfig {
+    /// The band generated \[Hz\] (the default filled in).
+    pub fn band(&self) -> [f64; 2] {
+        (self.frequencies).unwrap_or(BAND.map(|f| f / self.peak_period))
+    }
+
     /// The sea's linear components (defaults filled in).
     pub fn components(&self) -> Vec<Component> {
-        let tp = self.peak_period;
-        let band = self.frequencies.unwrap_or(BAND.map(|f| f / tp));
+        let band = self.band();
         let jonswap = Jonswap {
             significant_height: self.significant_height,
-            peak_period: tp,
+            peak_period: self.peak_period,
             gamma: self.gamma.unwrap_or(GAMMA),
         };
         let n = self.components.unwrap_or(COMPONENTS);

@@ -397,10 +397,11 @@ impl<const D: usize> Moving<D> {
             }
         }
         let region = motion.key.trim_end_matches(".prescribed");
+        let waves = (motion.waves.as_ref()).map_or(String::new(), |w| format!("  {w}\n"));
         format!(
             "motion of {region}: over the run the pivot moves up to {moved:.4e} m and \
              turns up to {turned:.4e} rad; its walls reach {speed:.4e} m/s and \
-             {accel:.4e} m/s²\n"
+             {accel:.4e} m/s²\n{waves}"
         )
     }
 

@@ -64,6 +64,8 @@ pub struct PrescribedMotion<const D: usize> {
     /// 2D: the angle (about z); 3D: the rotation vector.
     rotation: Vec<Signal>,
     ramp: f64,
+    /// A wave maker's waves in words, for `sph-cli check`.
+    pub waves: Option<String>,
 }
 
 impl<const D: usize> PrescribedMotion<D> {
@@ -83,6 +85,7 @@ impl<const D: usize> PrescribedMotion<D> {
             displacement,
             rotation,
             ramp: (config.ramp.or(wave_period.map(|t| 2.0 * t))).unwrap_or(0.0),
+            waves: config.waves.as_ref().map(|w| w.describe(g)),
             key,
         })
     }

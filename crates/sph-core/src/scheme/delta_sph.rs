@@ -245,12 +245,12 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
         let particle = |i: usize, drho: &mut f64, drho_diff: &mut f64, du: &mut Vector<D>| {
             self.particle_rates::<DIFF, BUDGET>(i, particles, list, domain, drho, drho_diff, du)
         };
-        let rows = (rates.drho.par_iter_mut())
-            .zip(rates.drho_diff.par_iter_mut())
-            .zip(rates.du.par_iter_mut())
-            .enumerate();
         if !BUDGET {
-            rows.for_each(|(i, ((drho, drho_diff), du))| _ = particle(i, drho, drho_diff, du));
+            (rates.drho.par_iter_mut())
+                .zip(rates.drho_diff.par_iter_mut())
+                .zip(rates.du.par_iter_mut())
+                .enumerate()
+                .for_each(|(i, ((drho, drho_diff), du))| _ = particle(i, drho, drho_diff, du));
             return Powers::default();
         }
         let blocks: Vec<Powers> = (rates.drho.par_chunks_mut(BLOCK))

@@ -100,6 +100,25 @@ fn gauges_read_the_still_level_and_dry_gauges_their_bottom() {
     assert!(series[2].1.iter().all(|&e| (e + 0.1).abs() < 1e-12));
 }
 
+/// In 3D the gauges stand on (x, y): still water 0.06 m deep reads its level to 1% of
+/// the spacing away from the walls.
+#[test]
+fn gauges_read_the_still_level_in_3d() {
+    let case = Case::from_toml_str(
+        "dimension = 3\n[particles]\nspacing = 0.01\n[fluid]\ndensity = 1000.0\n\
+         gravity = [0.0, 0.0, -9.81]\n[[fluid_block]]\nlo = [0.0, 0.0, 0.0]\n\
+         hi = [0.2, 0.15, 0.06]\nhydrostatic = true\n[[tank]]\nlo = [0.0, 0.0, 0.0]\n\
+         hi = [0.2, 0.15, 0.12]\n[time]\nend = 0.01\n[diagnostics]\nstill_level = 0.06\n",
+    )
+    .unwrap();
+    let sim = Simulation::<3>::new(case).unwrap();
+    let eta = sim
+        .wave_elevations(&[vec![0.1, 0.075], vec![0.07, 0.06]])
+        .unwrap();
+    assert!(eta.iter().all(|e| e.abs() < 1e-4), "{eta:?}");
+    assert!(sim.wave_elevations(&[vec![0.1]]).is_err());
+}
+
 /// The piston flume of `examples/wave_flume_2d.toml` (d = 0.5 m, d/Δx = 20, H = 0.04 m,
 /// T = 1.625 s: kd = 1, H/L = 1.3%, second-order generation) shortened to 11 m, its
 /// absorber over the last 4.7 m (1.5 L), run to 17 s. Over the last four periods:

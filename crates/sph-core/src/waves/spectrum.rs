@@ -2,10 +2,11 @@
 //! discretisation into the components a wave maker generates.
 //!
 //! `S(f) = α g² (2π)⁻⁴ f⁻⁵ exp(-5/4 (f_p/f)⁴) γ^r`, `r = exp(-(f - f_p)²/(2σ² f_p²))`,
-//! `σ = 0.07` for `f ≤ f_p` and `0.09` above; α is set so that `4√m₀ = H_s` over the
-//! generated band. Component `n` of `N` at the band's midpoints `f_n` has amplitude
-//! `a_n = √(2 S(f_n) Δf)` and a phase drawn uniformly from the seed (ChaCha8, the same
-//! sea on every machine and version).
+//! `σ = 0.07` for `f ≤ f_p` and `0.09` above. The `N` components sit at the multiples
+//! of `Δf = (f_max - f_min)/N` in `(f_min, f_min + NΔf]` (rounded up to a multiple),
+//! so that the sea repeats exactly every `1/Δf`; component `n` has amplitude
+//! `a_n = √(2 S(f_n) Δf)`, α set so that `4√m₀ = H_s` (`m₀ = Σ a_n²/2`), and a phase
+//! drawn uniformly from the seed (ChaCha8, the same sea on every machine and version).
 
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -40,11 +41,12 @@ impl Jonswap {
         f.powi(-5) * (-1.25 * (fp / f).powi(4)).exp() * self.gamma.powf(r)
     }
 
-    /// The spectral density \[m²/Hz\] at the midpoints of `n` equal bands over
-    /// `[f_min, f_max]` \[Hz\], scaled so that `4√(Σ S Δf) = H_s`.
+    /// The spectral density \[m²/Hz\] at the `n` multiples of `Δf = (f_max - f_min)/n`
+    /// from just above `f_min` \[Hz\], scaled so that `4√(Σ S Δf) = H_s`.
     pub fn densities(&self, n: usize, f_min: f64, f_max: f64) -> Vec<(f64, f64)> {
         let df = (f_max - f_min) / n as f64;
-        let f: Vec<f64> = (0..n).map(|i| f_min + (i as f64 + 0.5) * df).collect();
+        let first = (f_min / df + 1e-9).floor() + 1.0;
+        let f: Vec<f64> = (0..n).map(|i| (first + i as f64) * df).collect();
         let shape: Vec<f64> = f.iter().map(|&f| self.shape(f)).collect();
         let m0 = shape.iter().sum::<f64>() * df;
         let scale = (self.significant_height / 4.0).powi(2) / m0;
@@ -74,7 +76,8 @@ mod tests {
 
     /// The discretised sea has the significant height asked for (`4√m₀`, `m₀ = Σ a²/2`),
     /// its densest band at the peak, a peak γ times the Pierson-Moskowitz one of the same
-    /// α, and the same phases for the same seed.
+    /// α, frequencies at multiples of Δf (a sea that repeats every 1/Δf), and the same
+    /// phases for the same seed.
     #[test]
     fn the_discrete_sea_has_its_height_peak_and_seed() {
         let sea = Jonswap {
@@ -94,5 +97,12 @@ mod tests {
         assert_eq!(c, sea.components(200, 0.3, 2.0, 7));
         assert_ne!(c[0].phase, sea.components(200, 0.3, 2.0, 8)[0].phase);
         assert!(c.iter().all(|c| (0.0..2.0 * PI).contains(&c.phase)));
+        let df = 1.7 / 200.0;
+        for c in &c {
+            let multiple = c.omega / (2.0 * PI * df);
+            assert!((multiple - multiple.round()).abs() < 1e-9, "{multiple}");
+        }
+        let f = |c: &Component| c.omega / (2.0 * PI);
+        assert!(f(&c[0]) > 0.3 && (f(&c[199]) - 2.0).abs() < df);
     }
 }

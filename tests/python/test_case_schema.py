@@ -43,8 +43,8 @@ def keys_of(node):
 def schema_keys():
     """`key` for top-level keys, `table.key` for the keys of tables and arrays of tables,
     and `table.sub.key` for arrays of tables inside a table (`[[diagnostics.sensors]]`)
-    and for the keys of a table inside one whose keys are all described (and of the
-    arrays of tables in it: `wall.free.springs.point`)."""
+    and for the keys of a table inside one whose keys are all described, at any depth
+    (and of the arrays of tables in it: `wall.free.springs.point`)."""
     found = set()
     for key, node in SCHEMA["properties"].items():
         table = table_of(node)
@@ -58,14 +58,27 @@ def schema_keys():
                 found.update(f"{key}.{sub}.{k}" for k in keys_of(nested))
                 continue
             found.add(f"{key}.{sub}")
-            # a table whose every key is described gets a row per key (`prescribed.pivot`)
-            props = (nested or {}).get("properties", {})
-            if props and all(v.get("description") for v in props.values()):
-                for k, v in props.items():
-                    # an array of tables in it gets its own rows (`[[wall.free.springs]]`)
-                    deeper = table_of(resolve(v)) if resolve(v).get("type") == "array" else None
-                    keys = [f".{d}" for d in keys_of(deeper)] if deeper is not None else [""]
-                    found.update(f"{key}.{sub}.{k}{d}" for d in keys)
+            found.update(described_rows(f"{key}.{sub}", nested))
+    return found
+
+
+def described_rows(prefix, table):
+    """The rows of a table whose every key is described (`prescribed.pivot`): a row per
+    key, the keys of an array of tables in it (`[[wall.free.springs]]`), and the rows of
+    a table in it, likewise (`prescribed.waves.spectrum.seed`)."""
+    props = (table or {}).get("properties", {})
+    if not props or not all(v.get("description") for v in props.values()):
+        return set()
+    found = set()
+    for k, v in props.items():
+        inner = resolve(v)
+        deeper = table_of(inner)
+        if inner.get("type") == "array" and deeper is not None:
+            found.update(f"{prefix}.{k}.{d}" for d in keys_of(deeper))
+            continue
+        found.add(f"{prefix}.{k}")
+        if deeper is not None:
+            found.update(described_rows(f"{prefix}.{k}", deeper))
     return found
 
 

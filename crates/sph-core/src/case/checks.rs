@@ -9,6 +9,24 @@ pub(super) fn column_name(name: &str) -> bool {
         && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
+/// A column name (see [`column_name`]) that none of the `earlier` ones of its kind
+/// (`what`: "sensor", "gauge") has.
+pub(super) fn own_column_name<'a>(
+    key: &str,
+    name: &str,
+    mut earlier: impl Iterator<Item = &'a str>,
+    what: &str,
+) -> Result<()> {
+    if column_name(name) && !earlier.any(|o| o == name) {
+        return Ok(());
+    }
+    Err(SphError::invalid(
+        key,
+        format!("{name:?}"),
+        format!("a name no other {what} has: a letter, then letters, digits or _"),
+    ))
+}
+
 /// A name that is one plain path component: not empty, no separator, not `.` or
 /// `..`, no control character, so that `<name>_out` stays inside the working folder.
 pub(super) fn plain_file_name(key: &str, name: &str) -> Result<()> {

@@ -86,6 +86,28 @@ pub fn max_density_variation<const D: usize>(p: &Particles<D>, rho0: f64) -> f64
         .reduce(|| 0.0, f64::max)
 }
 
+/// Calls `f(j, W(x - x_j) V_j)` for every fluid particle `j` within the kernel support
+/// of `point`.
+fn for_fluid_near<const D: usize>(
+    model: &dyn Model<D>,
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+    mut f: impl FnMut(usize, f64),
+) {
+    let r_max = model.support_radius();
+    list.for_candidates(point, |j| {
+        if p.kind[j] != Kind::Fluid {
+            return;
+        }
+        let r = domain.separation(point, &p.x[j]).norm();
+        if r < r_max {
+            f(j, model.w(r) * p.mass[j] / p.rho[j]);
+        }
+    });
+}
+
 /// Shepard-interpolated fluid pressure at `point`, `Σ_j p_j W_ij V_j / Σ_j W_ij V_j`
 /// over the fluid within the kernel support; `None` where no fluid is in reach (a dry
 /// point has no SPH pressure, which is not the same as zero pressure).
@@ -96,18 +118,10 @@ pub fn probe_pressure<const D: usize>(
     domain: &Domain<D>,
     point: &Vector<D>,
 ) -> Option<f64> {
-    let r_max = model.support_radius();
     let (mut num, mut den) = (0.0, 0.0);
-    list.for_candidates(point, |j| {
-        if p.kind[j] != Kind::Fluid {
-            return;
-        }
-        let r = domain.separation(point, &p.x[j]).norm();
-        if r < r_max {
-            let wv = model.w(r) * p.mass[j] / p.rho[j];
-            num += p.p[j] * wv;
-            den += wv;
-        }
+    for_fluid_near(model, p, list, domain, point, |j, wv| {
+        num += p.p[j] * wv;
+        den += wv;
     });
     (den > 0.0).then(|| num / den)
 }
@@ -121,17 +135,8 @@ pub fn fluid_fraction<const D: usize>(
     domain: &Domain<D>,
     point: &Vector<D>,
 ) -> f64 {
-    let r_max = model.support_radius();
     let mut sum = 0.0;
-    list.for_candidates(point, |j| {
-        if p.kind[j] != Kind::Fluid {
-            return;
-        }
-        let r = domain.separation(point, &p.x[j]).norm();
-        if r < r_max {
-            sum += model.w(r) * p.mass[j] / p.rho[j];
-        }
-    });
+    for_fluid_near(model, p, list, domain, point, |_, wv| sum += wv);
     sum
 }
 

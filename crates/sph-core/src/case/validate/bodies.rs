@@ -1,7 +1,7 @@
 //! Checks of the walls and what is measured on them: tank layers and faces, wall
 //! boxes, body names, pressure sensors.
 
-use crate::case::checks::{column_name, components, positive};
+use crate::case::checks::{column_name, components, own_column_name, positive};
 use crate::case::schema::*;
 use crate::case::MAX_GAUGE_SAMPLES;
 use crate::error::{Result, SphError};
@@ -35,13 +35,8 @@ impl Case {
         let sensors = &self.diagnostics.sensors;
         let s = &sensors[k];
         let key = |what: &str| format!("diagnostics.sensors[{k}].{what}");
-        if !column_name(&s.name) || sensors[..k].iter().any(|o| o.name == s.name) {
-            return Err(SphError::invalid(
-                key("name"),
-                format!("{:?}", s.name),
-                "a name no other sensor has: a letter, then letters, digits or _",
-            ));
-        }
+        let earlier = sensors[..k].iter().map(|o| o.name.as_str());
+        own_column_name(&key("name"), &s.name, earlier, "sensor")?;
         components(&key("centre"), &s.centre, self.dimension)?;
         components(&key("normal"), &s.normal, self.dimension)?;
         if s.normal.iter().all(|&c| c == 0.0) {
@@ -77,13 +72,8 @@ impl Case {
         let gauges = &self.diagnostics.gauges;
         let g = &gauges[k];
         let key = |what: &str| format!("diagnostics.gauges[{k}].{what}");
-        if !column_name(&g.name) || gauges[..k].iter().any(|o| o.name == g.name) {
-            return Err(SphError::invalid(
-                key("name"),
-                format!("{:?}", g.name),
-                "a name no other gauge has: a letter, then letters, digits or _",
-            ));
-        }
+        let earlier = gauges[..k].iter().map(|o| o.name.as_str());
+        own_column_name(&key("name"), &g.name, earlier, "gauge")?;
         components(&key("position"), &g.position, self.dimension - 1)?;
         let Some([bottom, top]) = self.gauge_line(g) else {
             return Err(SphError::invalid(

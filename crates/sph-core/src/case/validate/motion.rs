@@ -88,14 +88,12 @@ impl Case {
         let d = self.dimension;
         let key = format!("{key}.prescribed");
         if let Some(waves) = &m.waves {
-            let other = [
+            let other = first_given(&[
                 ("table", m.table.is_some()),
                 ("displacement", m.displacement.is_some()),
-            ]
-            .into_iter()
-            .chain([("rotation", m.rotation.is_some())])
-            .find(|(_, given)| *given);
-            if let Some((name, _)) = other {
+                ("rotation", m.rotation.is_some()),
+            ]);
+            if let Some(name) = other {
                 return Err(SphError::invalid(
                     format!("{key}.{name}"),
                     "given",
@@ -223,17 +221,13 @@ fn check_regular(key: &str, w: &WavesConfig, g: f64) -> Result<()> {
 
 /// An irregular sea: its parameters, and no regular-wave keys beside it.
 fn check_spectrum(key: &str, w: &WavesConfig, sea: &SpectrumConfig) -> Result<()> {
-    let regular = [
+    let regular = first_given(&[
         ("height", w.height.is_some()),
         ("period", w.period.is_some()),
-    ]
-    .into_iter()
-    .chain([
         ("wavelength", w.wavelength.is_some()),
         ("order", w.order.is_some()),
-    ])
-    .find(|(_, given)| *given);
-    if let Some((name, _)) = regular {
+    ]);
+    if let Some(name) = regular {
         return Err(SphError::invalid(
             format!("{key}.{name}"),
             "given",
@@ -271,6 +265,11 @@ fn check_spectrum(key: &str, w: &WavesConfig, sea: &SpectrumConfig) -> Result<()
         }
     }
     Ok(())
+}
+
+/// The first of the named keys that is given.
+fn first_given<'a>(keys: &[(&'a str, bool)]) -> Option<&'a str> {
+    keys.iter().find(|(_, given)| *given).map(|(name, _)| *name)
 }
 
 /// `texts` holds `n` expressions.

@@ -119,17 +119,18 @@ fn gauges_read_the_still_level_in_3d() {
     assert!(sim.wave_elevations(&[vec![0.1]]).is_err());
 }
 
-/// The piston flume of `examples/wave_flume_2d.toml` (d = 0.5 m, d/Δx = 20, H = 0.04 m,
-/// T = 1.625 s: kd = 1, H/L = 1.3%, second-order generation) shortened to 11 m, its
-/// absorber over the last 4.7 m (1.5 L), run to 17 s. Over the last four periods:
-/// - the height one wavelength from the paddle is within 3% of H (measured -1.9%; the
-///   scheme's damping takes about 3% a wavelength at this resolution,
+/// The piston flume of `examples/wave_flume_2d.toml` (d = 0.5 m, d/Δx = 20, h/Δx = 2.5,
+/// α = 0.0025, H = 0.04 m, T = 1.625 s: kd = 1, H/L = 1.3%, second-order generation)
+/// shortened to 11 m, its absorber over the last 4.7 m (1.5 L), run to 17 s. Over the
+/// last four periods:
+/// - the height at five gauges 1 to 2 wavelengths from the paddle is within 3% of H
+///   (measured +0.9% at 1 L; the full flume loses 1.6% a wavelength,
 ///   docs/validation/wave_flume.md) and the zero-up-crossing period within 0.5% of T;
-/// - the second harmonic over five gauges spread across 1.6 beat lengths splits into
-///   a bound part `c A1(x)²` within 10% of Stokes's at the measured height (+1.7%)
-///   and a free part;
+/// - the second harmonic over those gauges, spread across 1.6 beat lengths, splits into
+///   a bound part `c A1(x)²` within 10% of Stokes's at the measured height (+7.8%) and
+///   a free part;
 /// - three gauges L/10 and L/4 apart split the first harmonic into incident and
-///   reflected waves: the absorber reflects under 5% (0.5%).
+///   reflected waves: the absorber reflects under 5% (0.35%).
 #[test]
 fn a_piston_makes_the_waves_linear_theory_asks_for_and_the_absorber_takes_them() {
     let gauges = [3.15, 3.9, 4.7, 5.5, 6.2, 3.5, 3.814, 4.285];
@@ -152,7 +153,7 @@ fn a_piston_makes_the_waves_linear_theory_asks_for_and_the_absorber_takes_them()
     let fits: Vec<[Complex<f64>; 3]> = (series.iter())
         .map(|(_, eta)| harmonics(&t, eta, omega))
         .collect();
-    let h1 = 2.0 * fits[0][0].norm();
+    let heights: Vec<f64> = fits[..5].iter().map(|f| 2.0 * f[0].norm()).collect();
     let tz = up_crossing_period(&t, &series[0].1);
     // second harmonic: bound c A1² and free F e^{i k2 x} over g0..g4
     let a1: Vec<Complex<f64>> = fits[..5].iter().map(|f| f[0]).collect();
@@ -167,12 +168,15 @@ fn a_piston_makes_the_waves_linear_theory_asks_for_and_the_absorber_takes_them()
     let (incident, reflected) = split(&a1, &wave(k, &gauges[5..]), &wave(-k, &gauges[5..]));
     let kr = reflected.norm() / incident.norm();
     println!(
-        "H(1 L) = {h1:.5} m, T_z = {tz:.5} s, bound {bound:.3e} m (Stokes {stokes:.3e} m), \
+        "H from 1 to 2 L {heights:.5?} m, T_z = {tz:.5} s, bound {bound:.3e} m (Stokes {stokes:.3e} m), \
          free {:.3e} m; incident {:.5} m, K_r = {kr:.4}",
         free.norm(),
         2.0 * incident.norm()
     );
-    assert!((h1 / height - 1.0).abs() < 0.03, "H at 1 L: {h1:.5} m");
+    assert!(
+        heights.iter().all(|h| (h / height - 1.0).abs() < 0.03),
+        "H from 1 to 2 L: {heights:.5?} m"
+    );
     assert!((tz / period - 1.0).abs() < 0.005, "T_z {tz:.5} s");
     assert!((bound / stokes - 1.0).abs() < 0.1);
     assert!(kr < 0.05);

@@ -125,6 +125,37 @@ fn check_reports_a_wave_maker_s_waves() {
     );
 }
 
+/// An absorbing paddle's gauge stands a kernel support, half a spacing and a stroke
+/// in front of it (0.2 + 0.025 + 0.0204 m); one so far off that the waves' phase
+/// across it passes 1 rad (a coarse spacing, a wide kernel) is refused in one line.
+#[test]
+fn check_places_an_absorbing_paddle_s_gauge_and_refuses_one_too_far_off() {
+    let case = example("validation/wave_paddle_absorption.toml");
+    let out = cli(&["check", &case]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("active absorption from a gauge 0.2454 m in front of the paddle at x = 0.2454 m (k x = 0.491 rad)"),
+        "{text}"
+    );
+    let dir = scratch("absorbing_paddle");
+    std::fs::create_dir_all(&dir).unwrap();
+    let coarse = std::fs::read_to_string(&case)
+        .unwrap()
+        .replace("spacing = 0.05 ", "spacing = 0.1\nh_over_dx = 3.0 ")
+        .replace("lo = [-0.2, 0.0] ", "lo = [-0.7, 0.0] ")
+        .replace("lo = [-0.5, 0.0]", "lo = [-1.0, 0.0]");
+    let path = dir.join("case.toml");
+    std::fs::write(&path, coarse).unwrap();
+    let out = cli(&["check", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.starts_with("error: wall[0].prescribed.waves.active_absorption = true: expected waves long beside the kernel: the gauge 0.6704 m in front of the paddle sits at k x = 1.341 rad"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn check_reports_each_region_and_the_closest_fluid_to_a_wall() {
     let out = cli(&["check", &example("validation/water_wedge.toml")]);

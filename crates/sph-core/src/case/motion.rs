@@ -123,6 +123,16 @@ pub struct WavesConfig {
     /// An irregular sea instead of regular waves.
     #[serde(default)]
     pub spectrum: Option<SpectrumConfig>,
+    /// How long the paddle makes waves \[s\]: after `duration` it ramps down over the
+    /// ramp time and stops (a wave train). Default: the whole run.
+    #[serde(default)]
+    pub duration: Option<f64>,
+    /// Active absorption at the paddle (after Schäffer & Klopman 2000): the paddle adds
+    /// the motion that cancels what it would reflect of the waves coming back to it,
+    /// read by a gauge just in front of it (`docs/theory.md` §14; exact at the (peak)
+    /// frequency, partial elsewhere). Default: false.
+    #[serde(default)]
+    pub active_absorption: bool,
 }
 
 /// The defaults of an irregular sea: components, γ, band in units of `1/T_p`.
@@ -203,6 +213,19 @@ impl WavesConfig {
             100.0 * height * k / (2.0 * PI),
             height / maker.paddle.height_over_stroke(k, self.depth)
         )
+    }
+
+    /// The paddle's stroke at the still level \[m\]: regular waves' `H/(H/S)`, a sea's
+    /// `2 H_s/(H/S)` at its peak (about the largest the sea asks for).
+    pub fn stroke(&self, g: f64) -> f64 {
+        let maker = self.maker(g);
+        let omega = 2.0 * PI / self.period(g);
+        let k = crate::waves::theory::wavenumber(omega, self.depth, g);
+        let height = match &self.spectrum {
+            Some(sea) => 2.0 * sea.significant_height,
+            None => self.height.unwrap_or(0.0),
+        };
+        height / maker.paddle.height_over_stroke(k, self.depth)
     }
 
     /// The (peak) period: the default ramp is two of them.

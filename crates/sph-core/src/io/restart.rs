@@ -123,6 +123,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
     }
     write_records(&file, "sensor_filters", &c.sensor_filters)?;
     write_records(&file, "free_bodies", &c.free_bodies)?;
+    write_records(&file, "absorbing_paddles", &c.absorbing_paddles)?;
     crate::io::output::snapshot::write_creator(&file)?;
     file.close()
 }
@@ -279,6 +280,7 @@ impl Reader<'_> {
             budget: self.budget()?,
             sensor_filters: self.records("sensor_filters")?,
             free_bodies: self.records("free_bodies")?,
+            absorbing_paddles: self.records("absorbing_paddles")?,
         };
         let schedule = Schedule {
             next_snapshot: self.attr("next_snapshot")?,

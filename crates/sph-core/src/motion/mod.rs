@@ -23,6 +23,7 @@ use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::geometry::solid::Solid;
 use crate::particles::{Particles, Vector};
+use crate::waves::active_absorption::{self, ActiveAbsorption};
 use free::FreeBody;
 use mass::{Region, Solidity};
 use nalgebra::Vector3;
@@ -82,7 +83,12 @@ impl<const D: usize> Motions<D> {
                 (MotionChoice::Prescribed, Some(table), _) => {
                     let key = format!("{}.prescribed", motion.key);
                     let g = case.gravity().iter().map(|g| g * g).sum::<f64>().sqrt();
-                    let m = PrescribedMotion::new(key, table, case.time.end, g)?;
+                    let mut m = PrescribedMotion::new(key, table, case.time.end, g)?;
+                    if let Some(waves) = table.waves.as_ref().filter(|w| w.active_absorption) {
+                        m.absorption = Some(Box::new(absorption(
+                            case, waves, &m.key, particles, &body.ids,
+                        )?));
+                    }
                     (Drive::Prescribed(m), None)
                 }
                 (MotionChoice::Free, _, Some(_)) => {
@@ -195,6 +201,58 @@ impl<const D: usize> Motions<D> {
             });
     }
 
+    /// The wave makers' active absorptions, in case order.
+    fn absorbing(&self) -> impl Iterator<Item = &PrescribedMotion<D>> {
+        self.bodies.iter().filter_map(|b| match &b.drive {
+            Drive::Prescribed(m) if m.absorption.is_some() => Some(m),
+            _ => None,
+        })
+    }
+
+    /// The lines of the absorbing wave makers' gauges (x in 2D, (x, y) in 3D), in case
+    /// order.
+    pub fn absorbing_lines(&self) -> Vec<Vec<f64>> {
+        (self.absorbing())
+            .filter_map(|m| m.absorption.as_deref().map(|(_, line)| line.clone()))
+            .collect()
+    }
+
+    /// The wave makers' active absorptions, in case order, to update.
+    fn absorbing_mut(&mut self) -> impl Iterator<Item = &mut ActiveAbsorption> {
+        self.bodies.iter_mut().filter_map(|b| match &mut b.drive {
+            Drive::Prescribed(m) => m.absorption.as_deref_mut().map(|(a, _)| a),
+            Drive::Free(_) => None,
+        })
+    }
+
+    /// Gives each absorbing wave maker its gauge's reading at `t` (in the order of
+    /// [`Self::absorbing_lines`]), from which it sets its correction.
+    pub fn absorb(&mut self, t: f64, elevations: &[f64]) {
+        let ramps: Vec<f64> = self.absorbing().map(|m| m.ramp_at(t)[0]).collect();
+        for ((a, &eta), s) in self.absorbing_mut().zip(elevations).zip(ramps) {
+            a.update(t, eta, s);
+        }
+    }
+
+    /// Each absorbing wave maker's state for a restart file, in case order.
+    pub fn absorption_records(&self) -> Vec<active_absorption::Record> {
+        (self.absorbing())
+            .filter_map(|m| m.absorption.as_deref().map(|(a, _)| a.record()))
+            .collect()
+    }
+
+    /// Restores what [`Self::absorption_records`] gave; false when the records do not
+    /// match the absorbing wave makers.
+    pub fn restore_absorption(&mut self, records: &[active_absorption::Record]) -> bool {
+        if records.len() != self.absorbing().count() {
+            return false;
+        }
+        for (a, record) in self.absorbing_mut().zip(records) {
+            a.restore(record);
+        }
+        true
+    }
+
     /// The free bodies, in case order.
     pub fn free_bodies(&mut self) -> impl Iterator<Item = &mut FreeBody<D>> {
         self.bodies.iter_mut().filter_map(|b| match &mut b.drive {
@@ -258,6 +316,55 @@ impl<const D: usize> Motions<D> {
             .map(FreeBody::max_dt)
             .fold(f64::INFINITY, f64::min)
     }
+}
+
+/// A wave maker's active absorption, its gauge's line `x_g = R + Δx/2 + S` in front of
+/// the paddle's face at rest (the largest x of its particles plus Δx/2): a kernel
+/// support `R` and the stroke `S` clear of the paddle (which moves up to `S/2` making
+/// waves and about as much absorbing them), so that Γ there sees no wall; in 3D at the
+/// middle of the paddle's width. Refused where `k x_g` passes
+/// [`crate::waves::active_absorption::MAX_PHASE`] (waves too short for the resolution).
+fn absorption<const D: usize>(
+    case: &Case,
+    waves: &crate::case::WavesConfig,
+    key: &str,
+    particles: &Particles<D>,
+    ids: &Range<u32>,
+) -> Result<(ActiveAbsorption, Vec<f64>)> {
+    use crate::waves::active_absorption::MAX_PHASE;
+    let g = case.gravity().iter().map(|g| g * g).sum::<f64>().sqrt();
+    let (lo, hi) = (particles.x.iter().zip(&particles.id))
+        .filter(|(_, id)| ids.contains(id))
+        .fold(
+            (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN)),
+            |(lo, hi), (x, _)| (lo.inf(x), hi.sup(x)),
+        );
+    let face = hi[0] + 0.5 * case.dx();
+    let distance = case.support() + 0.5 * case.dx() + waves.stroke(g);
+    let omega = 2.0 * std::f64::consts::PI / waves.period(g);
+    let a = ActiveAbsorption::new(&waves.maker(g), omega, distance, g);
+    if a.phase() > MAX_PHASE {
+        return Err(SphError::invalid(
+            format!("{key}.waves.active_absorption"),
+            "true",
+            format!(
+                "waves long beside the kernel: the gauge {distance:.4} m in front of the \
+                 paddle sits at k x = {:.3} rad, more than {MAX_PHASE} (a finer spacing or \
+                 longer waves)",
+                a.phase()
+            ),
+        ));
+    }
+    let line = (0..D - 1)
+        .map(|d| {
+            if d == 0 {
+                face + distance
+            } else {
+                0.5 * (lo[d] + hi[d])
+            }
+        })
+        .collect();
+    Ok((a, line))
 }
 
 /// The free body of a region (validated `free` table) and its region as a solid.
@@ -397,7 +504,20 @@ impl<const D: usize> Moving<D> {
             }
         }
         let region = motion.key.trim_end_matches(".prescribed");
-        let waves = (motion.waves.as_ref()).map_or(String::new(), |w| format!("  {w}\n"));
+        let mut waves = (motion.waves.as_ref()).map_or(String::new(), |w| format!("  {w}\n"));
+        if let Some((a, line)) = motion.absorption.as_deref() {
+            let at: Vec<String> = line.iter().map(|v| format!("{v:.4}")).collect();
+            let at = match D {
+                2 => format!("x = {}", at[0]),
+                _ => format!("(x, y) = ({})", at.join(", ")),
+            };
+            waves += &format!(
+                "  active absorption from a gauge {:.4} m in front of the paddle at {at} m \
+                 (k x = {:.3} rad)\n",
+                a.distance,
+                a.phase()
+            );
+        }
         format!(
             "motion of {region}: over the run the pivot moves up to {moved:.4e} m and \
              turns up to {turned:.4e} rad; its walls reach {speed:.4e} m/s and \

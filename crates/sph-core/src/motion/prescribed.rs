@@ -1,7 +1,8 @@
 //! A prescribed rigid motion: the pivot's displacement and the rotation about it as
 //! expressions of time (exmex), differentiated exactly once and twice, columns of a
-//! table, or a wave maker's motion ([`crate::waves::paddle`]), with an optional
-//! smooth-step ramp (see `PrescribedMotion::ramp_at`).
+//! table, or a wave maker's motion ([`crate::waves::paddle`]) with its active
+//! absorption ([`crate::waves::active_absorption`]), with an optional smooth-step ramp
+//! (see `PrescribedMotion::ramp_at`).
 
 use super::rigid::{angular_rates, Pose};
 use super::table::{self, Spline};
@@ -9,6 +10,7 @@ use crate::case::expression::{named_values, Compiled, Variables};
 use crate::case::PrescribedConfig;
 use crate::error::{Result, SphError};
 use crate::particles::Vector;
+use crate::waves::active_absorption::ActiveAbsorption;
 use crate::waves::paddle::PaddleSignal;
 use nalgebra::{Rotation3, Vector3};
 use std::path::Path;
@@ -35,23 +37,35 @@ impl Signal {
         Ok(Self::Expression(Box::new([f, rate, rate2])))
     }
 
-    /// `(g, g', g'')` of `g = s f` at `t`, `s` the ramp with its derivatives.
-    fn at(&self, t: f64, s: [f64; 3], scratch: &mut Vec<f64>) -> [f64; 3] {
-        let [f, f1, f2] = match self {
-            Signal::Expression(f) => [
-                f[0].value(&[], t, scratch),
-                f[1].value(&[], t, scratch),
-                f[2].value(&[], t, scratch),
-            ],
-            Signal::Table(spline) => spline.at(t),
-            Signal::Paddle(paddle) => paddle.at(t),
-        };
-        [
-            s[0] * f,
-            s[1] * f + s[0] * f1,
-            s[2] * f + 2.0 * s[1] * f1 + s[0] * f2,
-        ]
+    /// `(g, g', g'')` of `g = s f` at `t`, `s` the ramp with its derivatives; a wave
+    /// maker's ramped stroke takes `correction` (its active absorption's) before it
+    /// becomes the paddle's coordinate.
+    fn at(&self, t: f64, s: [f64; 3], correction: [f64; 3], scratch: &mut Vec<f64>) -> [f64; 3] {
+        match self {
+            Signal::Expression(f) => ramped(
+                s,
+                [
+                    f[0].value(&[], t, scratch),
+                    f[1].value(&[], t, scratch),
+                    f[2].value(&[], t, scratch),
+                ],
+            ),
+            Signal::Table(spline) => ramped(s, spline.at(t)),
+            Signal::Paddle(paddle) => {
+                let stroke = ramped(s, paddle.stroke_at(t));
+                paddle.coordinate(std::array::from_fn(|k| stroke[k] + correction[k]))
+            }
+        }
     }
+}
+
+/// `(g, g', g'')` of `g = s f` from those of `s` and `f`.
+fn ramped(s: [f64; 3], [f, f1, f2]: [f64; 3]) -> [f64; 3] {
+    [
+        s[0] * f,
+        s[1] * f + s[0] * f1,
+        s[2] * f + 2.0 * s[1] * f1 + s[0] * f2,
+    ]
 }
 
 /// The motion of one body, from its `prescribed` table.
@@ -64,8 +78,12 @@ pub struct PrescribedMotion<const D: usize> {
     /// 2D: the angle (about z); 3D: the rotation vector.
     rotation: Vec<Signal>,
     ramp: f64,
+    /// A wave maker's `duration`: the motion ramps down over `ramp` after it.
+    duration: Option<f64>,
     /// A wave maker's waves in words, for `sph-cli check`.
     pub waves: Option<String>,
+    /// A wave maker's active absorption and its gauge's line (x in 2D, (x, y) in 3D).
+    pub absorption: Option<Box<(ActiveAbsorption, Vec<f64>)>>,
 }
 
 impl<const D: usize> PrescribedMotion<D> {
@@ -85,7 +103,9 @@ impl<const D: usize> PrescribedMotion<D> {
             displacement,
             rotation,
             ramp: (config.ramp.or(wave_period.map(|t| 2.0 * t))).unwrap_or(0.0),
+            duration: config.waves.as_ref().and_then(|w| w.duration),
             waves: config.waves.as_ref().map(|w| w.describe(g)),
+            absorption: None,
             key,
         })
     }
@@ -166,33 +186,33 @@ impl<const D: usize> PrescribedMotion<D> {
     /// derivatives: s' and s'' vanish at both ends, so that the motion's velocity and
     /// acceleration start from zero and join the unramped motion without a jump (a
     /// cosine ramp leaves an acceleration jump at t = T that rings through the water).
-    fn ramp_at(&self, t: f64) -> [f64; 3] {
-        if t >= self.ramp {
-            return [1.0, 0.0, 0.0];
-        }
-        let (tau, inv) = (t / self.ramp, 1.0 / self.ramp);
-        let rest = 1.0 - tau;
-        [
-            tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau),
-            30.0 * tau * tau * rest * rest * inv,
-            60.0 * tau * rest * (1.0 - 2.0 * tau) * inv * inv,
-        ]
+    /// After a wave maker's `duration` the motion is multiplied again, by `1 - s` of
+    /// `t - duration`, and stops.
+    pub fn ramp_at(&self, t: f64) -> [f64; 3] {
+        let up = smooth_step(t, self.ramp);
+        let Some(end) = self.duration else {
+            return up;
+        };
+        let [d, d1, d2] = smooth_step(t - end, self.ramp);
+        ramped(up, [1.0 - d, -d1, -d2])
     }
 
-    /// The pose at time `t`.
+    /// The pose at time `t` (with an active absorption's correction, at or after its
+    /// last update).
     pub fn pose(&self, t: f64) -> Pose<D> {
         let s = self.ramp_at(t);
+        let correction = (self.absorption.as_deref()).map_or([0.0; 3], |(a, _)| a.correction(t));
         let scratch = &mut Vec::new();
         let mut linear = [Vector::<D>::zeros(); 3];
         for (d, e) in self.displacement.iter().enumerate() {
-            for (k, v) in e.at(t, s, scratch).into_iter().enumerate() {
+            for (k, v) in e.at(t, s, correction, scratch).into_iter().enumerate() {
                 linear[k][d] = v;
             }
         }
         let mut angular = [Vector3::zeros(); 3];
         let axes: &[usize] = if D == 2 { &[2] } else { &[0, 1, 2] };
         for (e, &axis) in self.rotation.iter().zip(axes) {
-            for (k, v) in e.at(t, s, scratch).into_iter().enumerate() {
+            for (k, v) in e.at(t, s, correction, scratch).into_iter().enumerate() {
                 angular[k][axis] = v;
             }
         }
@@ -241,6 +261,24 @@ impl<const D: usize> PrescribedMotion<D> {
     }
 }
 
+/// The smooth step `s = 10τ³ - 15τ⁴ + 6τ⁵`, τ = t/T, 0 before t = 0 and 1 after T,
+/// with its two derivatives.
+fn smooth_step(t: f64, ramp: f64) -> [f64; 3] {
+    if t >= ramp {
+        return [1.0, 0.0, 0.0];
+    }
+    if t <= 0.0 {
+        return [0.0; 3];
+    }
+    let (tau, inv) = (t / ramp, 1.0 / ramp);
+    let rest = 1.0 - tau;
+    [
+        tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau),
+        30.0 * tau * tau * rest * rest * inv,
+        60.0 * tau * rest * (1.0 - 2.0 * tau) * inv * inv,
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -276,6 +314,32 @@ mod tests {
         assert!((before.velocity - after.velocity).norm() < 1e-7);
         assert!((before.acceleration - after.acceleration).norm() < 1e-6);
         assert!(m.check(&[0.0, 0.5, 2.0]).is_ok());
+    }
+
+    /// A wave maker with a `duration` ramps down after it, without a jump in velocity
+    /// or acceleration, and stands still at its rest once the ramp is over.
+    #[test]
+    fn a_wave_train_ramps_down_and_stops() {
+        let m = motion::<2>(
+            "ramp = 1.0
+[waves]
+paddle = \"piston\"
+depth = 0.5
+height = 0.02
+             period = 1.3
+duration = 3.0
+",
+        );
+        let close = |a: &Pose<2>, b: &Pose<2>| {
+            (a.velocity - b.velocity).norm() < 1e-7
+                && (a.acceleration - b.acceleration).norm() < 1e-6
+        };
+        for t in [1.0, 3.0, 4.0] {
+            assert!(close(&m.pose(t - 1e-9), &m.pose(t + 1e-9)), "t = {t}");
+        }
+        assert!(m.pose(2.0).velocity.norm() > 1e-3);
+        let rest = m.pose(4.5);
+        assert!(rest.pivot.norm() == 0.0 && rest.velocity.norm() == 0.0);
     }
 
     #[test]

@@ -29,6 +29,9 @@ pub struct Checkpoint<const D: usize> {
     pub sensor_filters: Vec<[f64; 4]>,
     /// The state of each free body (see [`crate::motion::free::FreeBody::record`]), in case order.
     pub free_bodies: Vec<[f64; RECORD]>,
+    /// The state of each absorbing wave maker (see
+    /// [`crate::waves::active_absorption::Record`]), in case order.
+    pub absorbing_paddles: Vec<crate::waves::active_absorption::Record>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -48,6 +51,8 @@ impl<const D: usize> Simulation<D> {
             budget: self.budget,
             sensor_filters: self.observers.iter().filter_map(|o| o.memory()).collect(),
             free_bodies: (self.stepper.motions.as_ref()).map_or(Vec::new(), |m| m.free_records()),
+            absorbing_paddles: (self.stepper.motions.as_ref())
+                .map_or(Vec::new(), |m| m.absorption_records()),
         })
     }
 
@@ -117,10 +122,13 @@ impl<const D: usize> Simulation<D> {
             for (body, record) in motions.free_bodies().zip(&c.free_bodies) {
                 body.restore(record);
             }
+            if !motions.restore_absorption(&c.absorbing_paddles) {
+                return Err(corrupt("its absorbing wave makers do not match its case"));
+            }
             particles.keep_wall_acceleration(true);
             motions.place(&mut particles, c.time, &sim.stepper.domain);
-        } else if !c.free_bodies.is_empty() {
-            return Err(corrupt("its free bodies do not match its case"));
+        } else if !c.free_bodies.is_empty() || !c.absorbing_paddles.is_empty() {
+            return Err(corrupt("its moving bodies do not match its case"));
         }
         sim.state = State {
             particles,

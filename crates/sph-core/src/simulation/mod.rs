@@ -258,7 +258,27 @@ impl<const D: usize> Simulation<D> {
     /// from inside the pool instead of each waking it from outside.
     pub fn step_until(&mut self, limit: f64) -> Result<()> {
         let (stepper, state, budget) = (&mut self.stepper, &mut self.state, self.budget.as_mut());
-        rayon::scope(|_| stepper.advance_to(state, budget, limit))
+        rayon::scope(|_| stepper.advance_to(state, budget, limit))?;
+        self.absorb_reflections()
+    }
+
+    /// Gives the absorbing wave makers their gauges' readings at the step's end and
+    /// places their paddles with the corrected velocity (see
+    /// [`crate::waves::active_absorption`]).
+    fn absorb_reflections(&mut self) -> Result<()> {
+        let Some(lines) = (self.motions())
+            .map(|m| m.absorbing_lines())
+            .filter(|l| !l.is_empty())
+        else {
+            return Ok(());
+        };
+        let elevations = self.wave_elevations(&lines)?;
+        let (t, domain) = (self.state.time, self.stepper.domain);
+        if let Some(motions) = self.stepper.motions.as_mut() {
+            motions.absorb(t, &elevations);
+            motions.place(&mut self.state.particles, t, &domain);
+        }
+        Ok(())
     }
 
     /// Why the energy budget of this case does not close, when it does not: terms that

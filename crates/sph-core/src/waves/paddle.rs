@@ -82,10 +82,10 @@ impl PaddleSignal {
     }
 
     /// The paddle's coordinate (a piston's displacement, a flap's angle) and its two
-    /// time derivatives at `t`: for a flap, `θ = ±atan u`, `u = X/a`,
-    /// `θ' = ±u'/(1 + u²)`, `θ'' = ±(u''/(1 + u²) - 2u u'²/(1 + u²)²)`.
-    pub fn at(&self, t: f64) -> [f64; 3] {
-        let [x, v, a] = self.stroke_at(t);
+    /// time derivatives from the displacement at the still level and its derivatives
+    /// `[x, v, a]`: for a flap, `θ = ±atan u`, `u = X/a`, `θ' = ±u'/(1 + u²)`,
+    /// `θ'' = ±(u''/(1 + u²) - 2u u'²/(1 + u²)²)`.
+    pub fn coordinate(&self, [x, v, a]: [f64; 3]) -> [f64; 3] {
         let Some((arm, sign)) = self.flap else {
             return [x, v, a];
         };
@@ -102,6 +102,12 @@ impl PaddleSignal {
 #[cfg(test)]
 mod tests {
     use super::super::spectrum::Jonswap;
+
+    impl PaddleSignal {
+        fn coordinate_at(&self, t: f64) -> [f64; 3] {
+            self.coordinate(self.stroke_at(t))
+        }
+    }
     use super::super::theory::frequency;
     use super::*;
     use std::f64::consts::PI;
@@ -131,18 +137,22 @@ mod tests {
         let k = wavenumber(omega, 0.5, G);
         let s = 0.02 / Paddle::Piston.height_over_stroke(k, 0.5);
         let t = 0.3;
-        assert!((signal.at(t)[0] - 0.5 * s * (omega * t).sin()).abs() < 1e-15);
+        assert!((signal.coordinate_at(t)[0] - 0.5 * s * (omega * t).sin()).abs() < 1e-15);
         let (flap, k) = (Paddle::Flap { hinge: 0.1 }, 2.0 * PI / 3.0);
         let omega = frequency(k, 0.5, G);
         let f = PaddleSignal::new(&regular(flap, 0.02, omega, false), G, 2);
         let stroke = 0.02 / flap.height_over_stroke(k, 0.5);
-        let theta = f.at(0.7)[0];
+        let theta = f.coordinate_at(0.7)[0];
         assert!(((-theta).tan() * 0.4 - 0.5 * stroke * (omega * 0.7).sin()).abs() < 1e-15);
         let f3 = PaddleSignal::new(&regular(flap, 0.02, omega, false), G, 3);
-        assert!((f3.at(0.7)[0] + theta).abs() < 1e-15);
+        assert!((f3.coordinate_at(0.7)[0] + theta).abs() < 1e-15);
         for sig in [&signal, &f, &f3] {
             let e = 1e-5;
-            let (lo, mid, hi) = (sig.at(t - e), sig.at(t), sig.at(t + e));
+            let (lo, mid, hi) = (
+                sig.coordinate_at(t - e),
+                sig.coordinate_at(t),
+                sig.coordinate_at(t + e),
+            );
             assert!(((hi[0] - lo[0]) / (2.0 * e) - mid[1]).abs() < 1e-8);
             assert!(((hi[1] - lo[1]) / (2.0 * e) - mid[2]).abs() < 1e-7);
         }
@@ -158,7 +168,11 @@ mod tests {
         let k = wavenumber(omega, 0.5, G);
         let x2 = madsen_second_order_stroke(0.02, k, 0.5);
         let t = 0.37;
-        assert!((two.at(t)[0] - one.at(t)[0] - x2 * (2.0 * omega * t).sin()).abs() < 1e-15);
+        assert!(
+            (two.coordinate_at(t)[0] - one.coordinate_at(t)[0] - x2 * (2.0 * omega * t).sin())
+                .abs()
+                < 1e-15
+        );
         let sea = Jonswap {
             significant_height: 0.05,
             peak_period: 1.5,
@@ -179,6 +193,6 @@ mod tests {
                 x * (c.omega * t + c.phase).sin()
             })
             .sum();
-        assert!((s.at(t)[0] - expected).abs() < 1e-14);
+        assert!((s.coordinate_at(t)[0] - expected).abs() < 1e-14);
     }
 }

@@ -65,6 +65,65 @@ impl Paddle {
         };
         4.0 * kd.sinh() * integral / ((2.0 * kd).sinh() + 2.0 * kd)
     }
+
+    /// The surface elevation of the evanescent mode of wavenumber `k_m` (an
+    /// [`evanescent_wavenumbers`] root) per unit displacement of the paddle at the still
+    /// level: a paddle moving by `X(t)` raises `η_m = E_m e^{-k_m x} X(t)` near itself,
+    /// `E_m = 4 sin k_m d / (sin 2k_m d + 2k_m d) · k_m ∫₋d⁰ f(z) cos k_m(z + d) dz`, the
+    /// transfer of [`Self::height_over_stroke`] with `cosh` turned to `cos`: piston
+    /// `k_m∫ = sin k_m d`; flap `((k_m d - k_m l) sin k_m d + cos k_m d - cos k_m l) /
+    /// (k_m (d - l))`.
+    pub fn evanescent_elevation(&self, k: f64, depth: f64) -> f64 {
+        let kd = k * depth;
+        let integral = match *self {
+            Paddle::Piston => kd.sin(),
+            Paddle::Flap { hinge } => {
+                let (kl, ka) = (k * hinge, k * (depth - hinge));
+                let low = kl.max(0.0);
+                let primitive = |s: f64| (s - kl) * s.sin() + s.cos();
+                (primitive(kd) - primitive(low)) / ka
+            }
+        };
+        4.0 * kd.sin() * integral / ((2.0 * kd).sin() + 2.0 * kd)
+    }
+
+    /// The evanescent modes' elevation per unit paddle displacement at angular frequency
+    /// `omega`, `x` \[m\] in front of the paddle: `Σ_m E_m e^{-k_m x}` (see
+    /// [`Self::evanescent_elevation`]), summed until the terms fall below 10⁻¹² (at
+    /// most [`EVANESCENT_MODES`] modes). `x` > 0: at the paddle itself the sum converges
+    /// only slowly.
+    pub fn near_field(&self, omega: f64, depth: f64, g: f64, x: f64) -> f64 {
+        let modes = ((27.6 * depth / (PI * x)).ceil() as usize + 1).min(EVANESCENT_MODES);
+        (evanescent_wavenumbers(omega, depth, g, modes).iter())
+            .map(|&k| self.evanescent_elevation(k, depth) * (-k * x).exp())
+            .sum()
+    }
+}
+
+/// The most evanescent modes [`Paddle::near_field`] sums.
+pub const EVANESCENT_MODES: usize = 2000;
+
+/// The first `n` evanescent wavenumbers `k_m` of angular frequency `omega` in depth
+/// `depth`: the roots of `ω² = -g k tan kd`, one in each `((m - ½)π, mπ)/d`, found by
+/// bisection of `kd sin kd + (ω²d/g) cos kd` (which changes sign across each).
+pub fn evanescent_wavenumbers(omega: f64, depth: f64, g: f64, n: usize) -> Vec<f64> {
+    let k0d = omega * omega * depth / g;
+    let f = |x: f64| x * x.sin() + k0d * x.cos();
+    (1..=n)
+        .map(|m| {
+            let (mut lo, mut hi) = ((m as f64 - 0.5) * PI, m as f64 * PI);
+            let sign_lo = f(lo).signum();
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid).signum() == sign_lo {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            0.5 * (lo + hi) / depth
+        })
+        .collect()
 }
 
 /// The amplitude `A₂` of Stokes's second-order bound harmonic of a wave of height `H`
@@ -135,6 +194,50 @@ mod tests {
         // a flap hinged higher up moves less water: a smaller height per stroke
         let high = Paddle::Flap { hinge: 0.5 }.height_over_stroke(1.0, d);
         assert!(high < Paddle::Flap { hinge: 0.0 }.height_over_stroke(1.0, d));
+    }
+
+    /// Linear wave maker theory's modes add up to the paddle's own velocity profile at
+    /// the paddle (x = 0): `f(z) = F cosh k(z + d)/sinh kd + Σ_m E_m cos k_m(z + d)/sin k_m d`
+    /// (from `u = ∂φ/∂x` of each mode, `F` = H/S and `E_m` the evanescent elevations), for
+    /// a piston (f = 1) and a flap (f linear above its hinge, 0 below); the evanescent
+    /// wavenumbers solve their dispersion relation.
+    #[test]
+    fn progressive_and_evanescent_modes_rebuild_the_paddle_motion() {
+        let (d, omega) = (0.5, 2.0 * PI / 1.625);
+        let k = wavenumber(omega, d, G);
+        let modes = evanescent_wavenumbers(omega, d, G, 4000);
+        for (m, &km) in modes.iter().enumerate().take(50) {
+            let x = km * d;
+            assert!(((m as f64 + 0.5) * PI..(m as f64 + 1.0) * PI).contains(&x));
+            assert!((omega * omega + G * km * x.tan()).abs() < 1e-9 * omega * omega);
+        }
+        let flap = Paddle::Flap { hinge: 0.1 };
+        for (paddle, z, f) in [
+            (Paddle::Piston, -0.25, 1.0),
+            (Paddle::Piston, -0.05, 1.0),
+            (flap, -0.2, 0.2 / 0.4),
+            (flap, -0.45, 0.0),
+        ] {
+            let progressive =
+                paddle.height_over_stroke(k, d) * (k * (z + d)).cosh() / (k * d).sinh();
+            let evanescent: f64 = (modes.iter())
+                .map(|&km| {
+                    paddle.evanescent_elevation(km, d) * (km * (z + d)).cos() / (km * d).sin()
+                })
+                .sum();
+            assert!(
+                (progressive + evanescent - f).abs() < 2e-3,
+                "{paddle:?} z = {z}: {progressive} + {evanescent}"
+            );
+        }
+        // the near field decays away from the paddle and its sum has converged
+        let near = Paddle::Piston.near_field(omega, d, G, 0.1);
+        let far = Paddle::Piston.near_field(omega, d, G, 0.5);
+        assert!(near > 0.0 && far < 0.1 * near, "{near} {far}");
+        let direct: f64 = (modes.iter())
+            .map(|&km| Paddle::Piston.evanescent_elevation(km, d) * (-km * 0.1).exp())
+            .sum();
+        assert!((near - direct).abs() < 1e-12, "{near} {direct}");
     }
 
     /// Stokes's bound harmonic in deep water is `k a²/2` (a = H/2), and Madsen's

@@ -129,7 +129,7 @@ class Simulation:
     ) -> dict[str, dict[str, npt.NDArray[np.float64]]]:
         """Each prescribed body's (wave makers included) ``position`` (M, D),
         ``rotation`` (M, 1|3), ``velocity`` (M, D) and ``angular_velocity`` (M, 1|3) at
-        ``times``."""
+        ``times`` (an absorbing wave maker's correction: its current one, extrapolated)."""
     def wave_elevation(self, positions: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The free surface's elevation [m] above ``diagnostics.still_level`` on vertical
         lines at x values (2D) or (x, y) rows (3D), as gauges read it; (M,)."""

@@ -409,7 +409,8 @@ impl PySimulation {
     /// seconds, any times, not only the run's), by body name:
     /// ``{name: {"position": (M, D), "rotation": (M, 1) or (M, 3), "velocity": (M, D),
     /// "angular_velocity": (M, 1) or (M, 3)}}``, as :meth:`body_motions` gives them
-    /// now. Free bodies are left out (their motion is not known ahead).
+    /// now. Free bodies are left out (their motion is not known ahead); an absorbing
+    /// wave maker's correction is its current one, extrapolated.
     fn prescribed_motion<'py>(
         &self,
         py: Python<'py>,

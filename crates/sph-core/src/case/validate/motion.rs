@@ -166,6 +166,9 @@ impl Case {
                 ));
             }
         }
+        if let Some(duration) = w.duration {
+            positive(&format!("{key}.duration"), duration)?;
+        }
         match &w.spectrum {
             Some(sea) => check_spectrum(key, w, sea),
             None => check_regular(key, w, g),

@@ -407,6 +407,11 @@ fn wave_makers_are_checked_in_one_line() {
             "",
             "wall[0].prescribed.waves.spectrum.frequencies = [2, 1]: expected [f_min, f_max]",
         ),
+        (
+            "paddle = \"piston\"\ndepth = 0.1\nheight = 0.01\nperiod = 1.0\nduration = -2.0\n",
+            "",
+            "wall[0].prescribed.waves.duration = -2: expected a positive",
+        ),
     ] {
         let e = error_of(&wave_maker(waves, extra));
         assert!(e.starts_with(expected), "{e}\n expected: {expected}");

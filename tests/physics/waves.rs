@@ -14,30 +14,41 @@ use std::f64::consts::PI;
 const G: f64 = 9.81;
 
 /// The gauges' elevations of `case` at every step's end from `start` on: the times,
-/// and one series per gauge with its position.
-fn gauge_series(case: Case, start: f64) -> (Vec<f64>, Vec<(f64, Vec<f64>)>) {
+/// one series per gauge with its position, and the probes' velocity columns
+/// (`probe0_u`, `probe0_v`, `probe1_u`, ...).
+type Series = (Vec<f64>, Vec<(f64, Vec<f64>)>, Vec<Vec<f64>>);
+
+fn gauge_series(case: Case, start: f64) -> Series {
     let positions: Vec<f64> = (case.diagnostics.gauges.iter())
         .map(|g| g.position[0])
         .collect();
     let end = case.time.end;
     let mut sim = Simulation::<2>::new(case).unwrap();
     let header = sim.series_header();
-    let columns: Vec<usize> = (header.iter().enumerate())
-        .filter(|(_, h)| h.ends_with("_elevation"))
-        .map(|(k, _)| k)
-        .collect();
-    let (mut t, mut series) = (Vec::new(), vec![Vec::new(); columns.len()]);
+    let pick = |keep: &dyn Fn(&str) -> bool| -> Vec<usize> {
+        (header.iter().enumerate())
+            .filter(|(_, h)| keep(h))
+            .map(|(k, _)| k)
+            .collect()
+    };
+    let gauges = pick(&|h| h.ends_with("_elevation"));
+    let probes = pick(&|h| h.starts_with("probe") && (h.ends_with("_u") || h.ends_with("_v")));
+    let (mut t, mut series) = (Vec::new(), vec![Vec::new(); gauges.len()]);
+    let mut velocities = vec![Vec::new(); probes.len()];
     while sim.time() < end * (1.0 - 1e-12) {
         sim.step().unwrap();
         if sim.time() >= start {
             let row = sim.series_values();
             t.push(sim.time());
-            for (s, &c) in series.iter_mut().zip(&columns) {
+            for (s, &c) in series.iter_mut().zip(&gauges) {
+                s.push(row[c]);
+            }
+            for (s, &c) in velocities.iter_mut().zip(&probes) {
                 s.push(row[c]);
             }
         }
     }
-    (t, positions.into_iter().zip(series).collect())
+    (t, positions.into_iter().zip(series).collect(), velocities)
 }
 
 /// Least squares `y ≈ a0 + Σ_m Re(A_m e^{-imωt})`, m = 1..3: the complex amplitudes
@@ -92,7 +103,7 @@ fn gauges_read_the_still_level_and_dry_gauges_their_bottom() {
          { name = \"b\", position = [0.23] }, { name = \"dry\", position = [0.55] }]\n",
     )
     .unwrap();
-    let (_, series) = gauge_series(case, 0.0);
+    let (_, series, _) = gauge_series(case, 0.0);
     for (x, eta) in &series[..2] {
         let worst = eta.iter().fold(0.0f64, |m, e| m.max(e.abs()));
         assert!(worst < 1e-4, "gauge at x = {x}: |η| up to {worst:.3e} m");
@@ -142,11 +153,13 @@ fn a_piston_makes_the_waves_linear_theory_asks_for_and_the_absorber_takes_them()
         "time.end = 17.0".into(),
         "time.output_interval = 0.0".into(),
         gauge_list(&gauges),
+        "diagnostics.probes = [[3.5, 0.25], [3.5, 0.4]]".into(),
+        "diagnostics.probe_velocity = true".into(),
     ];
     let lines: Vec<&str> = lines.iter().map(String::as_str).collect();
     let case = example_case("wave_flume_2d.toml", &lines);
     let (period, height, depth) = (1.625, 0.04, 0.5);
-    let (t, series) = gauge_series(case, 17.0 - 4.0 * period);
+    let (t, series, probes) = gauge_series(case, 17.0 - 4.0 * period);
     let omega = 2.0 * PI / period;
     let k = wavenumber(omega, depth, G);
     let k2 = wavenumber(2.0 * omega, depth, G);
@@ -167,6 +180,28 @@ fn a_piston_makes_the_waves_linear_theory_asks_for_and_the_absorber_takes_them()
     let a1: Vec<Complex<f64>> = fits[5..].iter().map(|f| f[0]).collect();
     let (incident, reflected) = split(&a1, &wave(k, &gauges[5..]), &wave(-k, &gauges[5..]));
     let kr = reflected.norm() / incident.norm();
+    // velocities under the wave at r1 (x = 3.5 m) against linear theory with the
+    // measured elevation there: u = ω cosh ky / sinh kd · η, v = ω sinh ky / sinh kd · H(η)
+    let eta = fits[5][0];
+    let sinh_kd = (k * depth).sinh();
+    let probed: Vec<(f64, f64)> = [0.25, 0.4]
+        .iter()
+        .enumerate()
+        .map(|(p, y)| {
+            let u = harmonics(&t, &probes[2 * p], omega)[0];
+            let v = harmonics(&t, &probes[2 * p + 1], omega)[0];
+            let u_theory = eta * omega * (k * y).cosh() / sinh_kd;
+            // v leads η by a quarter period: v = ω sinh ky / sinh kd · a sin(kx - ωt)
+            let v_theory = eta * Complex::new(0.0, -1.0) * omega * (k * y).sinh() / sinh_kd;
+            (
+                (u - u_theory).norm() / u_theory.norm(),
+                (v - v_theory).norm() / v_theory.norm(),
+            )
+        })
+        .collect();
+    println!(
+        "velocity probes at y = 0.25, 0.4 m: |u - u_linear|/|u_linear|, same for v: {probed:.4?}"
+    );
     println!(
         "H from 1 to 2 L {heights:.5?} m, T_z = {tz:.5} s, bound {bound:.3e} m (Stokes {stokes:.3e} m), \
          free {:.3e} m; incident {:.5} m, K_r = {kr:.4}",
@@ -180,6 +215,10 @@ fn a_piston_makes_the_waves_linear_theory_asks_for_and_the_absorber_takes_them()
     assert!((tz / period - 1.0).abs() < 0.005, "T_z {tz:.5} s");
     assert!((bound / stokes - 1.0).abs() < 0.1);
     assert!(kr < 0.05);
+    assert!(
+        probed.iter().all(|&(u, v)| u < 0.05 && v < 0.05),
+        "velocity probes against linear theory: {probed:.4?}"
+    );
 }
 
 /// Active absorption (`examples/validation/wave_paddle_absorption.toml`, d/Δx = 10): a
@@ -194,7 +233,7 @@ fn an_absorbing_paddle_takes_the_waves_that_come_back_to_it() {
     let reflection = |active: &str| {
         let line = format!("wall.0.prescribed.waves.active_absorption = {active}");
         let case = example_case("validation/wave_paddle_absorption.toml", &[&line]);
-        let (t, series) = gauge_series(case, 14.0);
+        let (t, series, _) = gauge_series(case, 14.0);
         let xs: Vec<f64> = series.iter().map(|(x, _)| *x).collect();
         let span = t[t.len() - 1] - t[0];
         let (mut outgoing, mut returning) = (0.0, 0.0);
@@ -271,7 +310,7 @@ fn second_order_generation_suppresses_the_free_second_harmonic() {
         ];
         let lines: Vec<&str> = lines.iter().map(String::as_str).collect();
         let case = example_case("validation/wave_flume_kd05.toml", &lines);
-        let (t, series) = gauge_series(case, 22.0 - 4.0 * period);
+        let (t, series, _) = gauge_series(case, 22.0 - 4.0 * period);
         (series.iter())
             .map(|(_, eta)| {
                 let [a1, a2, _] = harmonics(&t, eta, omega);

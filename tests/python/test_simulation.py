@@ -512,6 +512,9 @@ def test_a_wave_maker_moves_as_theory_says_and_gauges_read_the_surface(tmp_path)
     assert np.all(np.abs(eta) < 5e-4), eta
     with pytest.raises(ValueError, match=r"^positions\[0\] = \[1.0, 2.0\]: expected 1 coordinate"):
         sim.wave_elevation([[1.0, 2.0]])
+    # velocity probes: still water at rest, a point above the water dry (NaN)
+    u = sim.probe_velocity([[3.0, 0.25], [3.0, 0.75]])
+    assert u.shape == (2, 2) and np.all(u[0] == 0.0) and np.all(np.isnan(u[1])), u
     sim.run(out=tmp_path / "flume")
     run = ds.load(tmp_path / "flume")
     assert {"g1_elevation", "r3_elevation"} <= set(run.series)

@@ -4,12 +4,12 @@
 
 use crate::arrays;
 use crate::simulation::rows;
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sph_core::motion::rigid::Pose;
-use sph_core::Simulation;
+use sph_core::{Simulation, Vector};
 
 /// `kinetic`, `potential`, `internal`, `total`, `bodies` (the free bodies'), and
 /// `dissipated` and `moving_work` (None without the energy budget).
@@ -59,6 +59,35 @@ pub(crate) fn probe_pressure<'py, const D: usize>(
     s: &Simulation<D>,
     points: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let points = reachable(s, points)?;
+    let values: Vec<f64> = points
+        .iter()
+        .map(|x| s.probe_pressure(x).unwrap_or(f64::NAN))
+        .collect();
+    Ok(PyArray1::from_vec(py, values))
+}
+
+/// Shepard velocities at `points`, (M, D) (NaN rows where no fluid is in reach); a
+/// point no fluid can ever reach raises ValueError.
+pub(crate) fn probe_velocity<'py, const D: usize>(
+    py: Python<'py>,
+    s: &Simulation<D>,
+    points: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let points = reachable(s, points)?;
+    let values: Vec<Vector<D>> = (s.probe_velocities(&points).into_iter())
+        .map(|u| u.unwrap_or(Vector::repeat(f64::NAN)))
+        .collect();
+    let rows: Vec<u32> = (0..values.len() as u32).collect();
+    Ok(arrays::vectors(py, &rows, values.len(), &values))
+}
+
+/// The points of `points`, refused where no fluid can ever reach them (outside the
+/// domain, or buried in a wall).
+fn reachable<const D: usize>(
+    s: &Simulation<D>,
+    points: &Bound<'_, PyAny>,
+) -> PyResult<Vec<Vector<D>>> {
     let points = arrays::points(points)?;
     for (k, x) in points.iter().enumerate() {
         if let Some(expected) = s.probe_refusal(x) {
@@ -68,11 +97,7 @@ pub(crate) fn probe_pressure<'py, const D: usize>(
             )));
         }
     }
-    let values: Vec<f64> = points
-        .iter()
-        .map(|x| s.probe_pressure(x).unwrap_or(f64::NAN))
-        .collect();
-    Ok(PyArray1::from_vec(py, values))
+    Ok(points)
 }
 
 /// `on_surface`, `normal` and `lambda` in id order.

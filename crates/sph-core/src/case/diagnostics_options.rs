@@ -26,6 +26,10 @@ pub struct DiagnosticsConfig {
     /// of the point.
     #[serde(default)]
     pub probes: Vec<Vec<f64>>,
+    /// Also write each probe's Shepard-interpolated fluid velocity: columns
+    /// `probe<k>_u`, `_v` (`_w`), NaN while no fluid is within the kernel support.
+    #[serde(default)]
+    pub probe_velocity: bool,
     /// Track the surge front: the largest fluid coordinate along this axis (0 = x).
     #[serde(default)]
     pub surge_front_axis: Option<usize>,

@@ -118,12 +118,42 @@ pub fn probe_pressure<const D: usize>(
     domain: &Domain<D>,
     point: &Vector<D>,
 ) -> Option<f64> {
-    let (mut num, mut den) = (0.0, 0.0);
+    shepard(model, p, list, domain, point, |j| [p.p[j]]).map(|[v]| v)
+}
+
+/// Shepard-interpolated fluid velocity at `point`, `Σ_j u_j W_ij V_j / Σ_j W_ij V_j`;
+/// `None` where no fluid is in reach.
+pub fn probe_velocity<const D: usize>(
+    model: &dyn Model<D>,
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+) -> Option<Vector<D>> {
+    let u = shepard(model, p, list, domain, point, |j| {
+        std::array::from_fn(|d| p.u[j][d])
+    });
+    u.map(|u: [f64; D]| Vector::from(u))
+}
+
+/// `Σ_j f_j W_ij V_j / Σ_j W_ij V_j` over the fluid within the kernel support of
+/// `point`; `None` where none is.
+fn shepard<const D: usize, const N: usize>(
+    model: &dyn Model<D>,
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+    f: impl Fn(usize) -> [f64; N],
+) -> Option<[f64; N]> {
+    let (mut num, mut den) = ([0.0; N], 0.0);
     for_fluid_near(model, p, list, domain, point, |j, wv| {
-        num += p.p[j] * wv;
+        for (n, v) in num.iter_mut().zip(f(j)) {
+            *n += v * wv;
+        }
         den += wv;
     });
-    (den > 0.0).then(|| num / den)
+    (den > 0.0).then(|| num.map(|n| n / den))
 }
 
 /// The fluid's kernel sum `Γ(x) = Σ_f W(x - x_f) V_f` at `point` (0 where no fluid is

@@ -32,6 +32,9 @@ pub trait Measure<const D: usize> {
     /// Shepard-interpolated pressures at `points` (`None` where no fluid is in reach),
     /// with the pressures brought up to date first.
     fn probe_pressures(&mut self, points: &[Vector<D>]) -> Vec<Option<f64>>;
+    /// Shepard-interpolated fluid velocities at `points` (`None` where no fluid is in
+    /// reach).
+    fn probe_velocities(&self, points: &[Vector<D>]) -> Vec<Option<Vector<D>>>;
     /// The fluid's kernel sum Γ at `points`.
     fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64>;
     /// Largest fluid coordinate along `axis`.
@@ -79,7 +82,8 @@ pub fn observers<const D: usize>(case: &Case, bodies: &[Body]) -> Vec<Box<dyn Ob
         let points = (diag.probes.iter())
             .map(|probe| Vector::<D>::from_fn(|d, _| probe[d]))
             .collect();
-        list.push(Box::new(Probes { points }));
+        let velocity = diag.probe_velocity;
+        list.push(Box::new(Probes { points, velocity }));
     }
     for s in &diag.sensors {
         let sensor = Sensor::new(s, case.dx(), case.series_interval());
@@ -227,15 +231,27 @@ impl<const D: usize> Observer<D> for Conservation {
 /// `probe<k>_pressure`: NaN where no fluid is in reach.
 struct Probes<const D: usize> {
     points: Vec<Vector<D>>,
+    /// Also `probe<k>_u`, `_v` (`_w`).
+    velocity: bool,
 }
 
 impl<const D: usize> Observer<D> for Probes<D> {
     fn header(&self, out: &mut Vec<String>) {
         out.extend((0..self.points.len()).map(|k| format!("probe{k}_pressure")));
+        if self.velocity {
+            for k in 0..self.points.len() {
+                out.extend(["u", "v", "w"][..D].iter().map(|c| format!("probe{k}_{c}")));
+            }
+        }
     }
     fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
         let values = run.probe_pressures(&self.points);
         out.extend(values.iter().map(|p| p.unwrap_or(f64::NAN)));
+        if self.velocity {
+            for u in run.probe_velocities(&self.points) {
+                out.extend(u.unwrap_or(Vector::repeat(f64::NAN)).iter());
+            }
+        }
     }
 }
 

@@ -76,6 +76,9 @@ impl<const D: usize> Measure<D> for Row<'_, D> {
         }
         self.sim.probe_pressures(points)
     }
+    fn probe_velocities(&self, points: &[Vector<D>]) -> Vec<Option<Vector<D>>> {
+        self.sim.probe_velocities(points)
+    }
     fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64> {
         self.sim.fluid_fractions(points)
     }

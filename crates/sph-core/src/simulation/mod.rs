@@ -416,21 +416,45 @@ impl<const D: usize> Simulation<D> {
     /// split run each point's from the process whose region holds it, which holds all
     /// the fluid in reach of it (collective).
     pub fn probe_pressures(&self, points: &[Vector<D>]) -> Vec<Option<f64>> {
+        let values = self.at_owners(points, |x| self.probe_pressure(x).map(|p| [p]));
+        values.into_iter().map(|v| v.map(|[p]| p)).collect()
+    }
+
+    /// Shepard-interpolated fluid velocities at `points` (see
+    /// [`diagnostics::probe_velocity`]), in a split run each from its owner
+    /// (collective).
+    pub fn probe_velocities(&self, points: &[Vector<D>]) -> Vec<Option<Vector<D>>> {
+        let s = &self.stepper;
+        let velocity = |x: &Vector<D>| {
+            let p = self.particles();
+            diagnostics::probe_velocity(s.model.as_ref(), p, &s.list, &s.domain, x)
+                .map(|u| std::array::from_fn(|d| u[d]))
+        };
+        let values = self.at_owners(points, velocity);
+        values.into_iter().map(|v| v.map(Vector::from)).collect()
+    }
+
+    /// `f` at each of `points`; in a split run from the process whose region holds the
+    /// point, which holds all the fluid in reach of it (collective).
+    fn at_owners<const N: usize>(
+        &self,
+        points: &[Vector<D>],
+        f: impl Fn(&Vector<D>) -> Option<[f64; N]>,
+    ) -> Vec<Option<[f64; N]>> {
         let Some(ranks) = self.ranks() else {
-            return points.iter().map(|x| self.probe_pressure(x)).collect();
+            return points.iter().map(f).collect();
         };
         let mine = |x: &Vector<D>| ranks.decomposition().owner(x) == ranks.rank();
         let mut sums: Vec<f64> = (points.iter())
-            .flat_map(
-                |x| match mine(x).then(|| self.probe_pressure(x)).flatten() {
-                    Some(p) => [p, 1.0],
-                    None => [0.0, 0.0],
-                },
-            )
+            .flat_map(|x| {
+                let value = mine(x).then(|| f(x)).flatten();
+                let found = [value.is_some() as u8 as f64];
+                value.unwrap_or([0.0; N]).into_iter().chain(found)
+            })
             .collect();
         ranks.sum(&mut sums);
-        sums.chunks(2)
-            .map(|c| (c[1] > 0.0).then_some(c[0]))
+        (sums.chunks(N + 1))
+            .map(|c| (c[N] > 0.0).then(|| std::array::from_fn(|k| c[k])))
             .collect()
     }
 

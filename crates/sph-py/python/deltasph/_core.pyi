@@ -124,6 +124,9 @@ class Simulation:
     def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,); NaN at
         a point with no fluid within the kernel support."""
+    def probe_velocity(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Shepard-interpolated fluid velocity [m/s] at points (M, D) or one point (D,),
+        (M, D); NaN rows where no fluid is within the kernel support."""
     def prescribed_motion(
         self, times: npt.ArrayLike
     ) -> dict[str, dict[str, npt.NDArray[np.float64]]]:

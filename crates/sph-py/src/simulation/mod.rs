@@ -447,6 +447,18 @@ impl PySimulation {
         each!(&self.solver, s => measures::probe_pressure(py, s, points))
     }
 
+    /// Fluid velocity [m/s] interpolated (Shepard) from the fluid at ``points``:
+    /// array-like (M, D) or one point (D,), returning (M, D); NaN rows where no fluid
+    /// is within the kernel support, ValueError where none can ever be (as
+    /// :meth:`probe_pressure`).
+    fn probe_velocity<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        each!(&self.solver, s => measures::probe_velocity(py, s, points))
+    }
+
     /// Free-surface detection (Marrone et al. 2010) at the current state, in id order:
     /// ``on_surface`` (bool, N), ``normal`` (unit outward normal estimate, N × D; zero
     /// for walls) and ``lambda`` (smallest eigenvalue of the renormalisation matrix,

@@ -7,6 +7,7 @@
 mod checkpoint;
 mod cost;
 mod measure;
+mod probes;
 mod split;
 mod state;
 mod stepper;
@@ -412,114 +413,6 @@ impl<const D: usize> Simulation<D> {
         self.max_over_processes(local)
     }
 
-    /// Shepard-interpolated pressures at `points` (see [`Self::probe_pressure`]): in a
-    /// split run each point's from the process whose region holds it, which holds all
-    /// the fluid in reach of it (collective).
-    pub fn probe_pressures(&self, points: &[Vector<D>]) -> Vec<Option<f64>> {
-        let values = self.at_owners(points, |x| self.probe_pressure(x).map(|p| [p]));
-        values.into_iter().map(|v| v.map(|[p]| p)).collect()
-    }
-
-    /// Shepard-interpolated fluid velocities at `points` (see
-    /// [`diagnostics::probe_velocity`]), in a split run each from its owner
-    /// (collective).
-    pub fn probe_velocities(&self, points: &[Vector<D>]) -> Vec<Option<Vector<D>>> {
-        let s = &self.stepper;
-        let velocity = |x: &Vector<D>| {
-            let p = self.particles();
-            diagnostics::probe_velocity(s.model.as_ref(), p, &s.list, &s.domain, x)
-                .map(|u| std::array::from_fn(|d| u[d]))
-        };
-        let values = self.at_owners(points, velocity);
-        values.into_iter().map(|v| v.map(Vector::from)).collect()
-    }
-
-    /// `f` at each of `points`; in a split run from the process whose region holds the
-    /// point, which holds all the fluid in reach of it (collective).
-    fn at_owners<const N: usize>(
-        &self,
-        points: &[Vector<D>],
-        f: impl Fn(&Vector<D>) -> Option<[f64; N]>,
-    ) -> Vec<Option<[f64; N]>> {
-        let Some(ranks) = self.ranks() else {
-            return points.iter().map(f).collect();
-        };
-        let mine = |x: &Vector<D>| ranks.decomposition().owner(x) == ranks.rank();
-        let mut sums: Vec<f64> = (points.iter())
-            .flat_map(|x| {
-                let value = mine(x).then(|| f(x)).flatten();
-                let found = [value.is_some() as u8 as f64];
-                value.unwrap_or([0.0; N]).into_iter().chain(found)
-            })
-            .collect();
-        ranks.sum(&mut sums);
-        (sums.chunks(N + 1))
-            .map(|c| (c[N] > 0.0).then(|| std::array::from_fn(|k| c[k])))
-            .collect()
-    }
-
-    /// The fluid's kernel sum Γ at `points` (see [`diagnostics::fluid_fraction`]); in a
-    /// split run each point's owner sums it (collective).
-    pub fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64> {
-        let s = &self.stepper;
-        let gamma = |x: &Vector<D>| {
-            let p = self.particles();
-            diagnostics::fluid_fraction(s.model.as_ref(), p, &s.list, &s.domain, x)
-        };
-        let Some(ranks) = self.ranks() else {
-            return points.iter().map(gamma).collect();
-        };
-        let mine = |x: &Vector<D>| ranks.decomposition().owner(x) == ranks.rank();
-        let mut sums: Vec<f64> = (points.iter())
-            .map(|x| if mine(x) { gamma(x) } else { 0.0 })
-            .collect();
-        ranks.sum(&mut sums);
-        sums
-    }
-
-    /// The free surface's elevation above `diagnostics.still_level` on the vertical
-    /// lines at `positions` (x in 2D, (x, y) in 3D), as gauges read it
-    /// ([`crate::diagnostics::gauges`]); refused where the case gives no vertical extent
-    /// for the lines (no `[domain]` or `[[tank]]`). Collective in a split run.
-    pub fn wave_elevations(&self, positions: &[Vec<f64>]) -> Result<Vec<f64>> {
-        let mut out = Vec::with_capacity(positions.len());
-        for (k, position) in positions.iter().enumerate() {
-            let config = crate::case::GaugeConfig {
-                name: format!("positions[{k}]"),
-                position: position.clone(),
-                bottom: None,
-                top: None,
-            };
-            let finite = position.iter().all(|v| v.is_finite());
-            if position.len() + 1 != D || !finite || self.case().gauge_line(&config).is_none() {
-                return Err(SphError::invalid(
-                    format!("positions[{k}]"),
-                    format!("{position:?}"),
-                    format!(
-                        "{} coordinate(s) of a vertical line within a [domain] or [[tank]]",
-                        D - 1
-                    ),
-                ));
-            }
-            let gauge = crate::diagnostics::gauges::Gauge::<D>::new(self.case(), &config);
-            out.push(gauge.elevation(&self.fluid_fractions(&gauge.points)));
-        }
-        Ok(out)
-    }
-
-    /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first);
-    /// `None` where no fluid is within the kernel support.
-    pub fn probe_pressure(&self, point: &Vector<D>) -> Option<f64> {
-        let s = &self.stepper;
-        diagnostics::probe_pressure(
-            s.model.as_ref(),
-            self.particles(),
-            &s.list,
-            &s.domain,
-            point,
-        )
-    }
-
     /// The pose of every moving body now, in case order (none without moving bodies).
     pub fn body_poses(&self) -> Vec<Pose<D>> {
         (self.stepper.motions.as_ref()).map_or(Vec::new(), |m| m.poses(self.state.time))
@@ -538,12 +431,6 @@ impl<const D: usize> Simulation<D> {
     /// Free-surface flags, normals and `λ` (Marrone et al. 2010), in the current order.
     pub fn free_surface(&self) -> FreeSurface<D> {
         self.stepper.free_surface(&self.state.particles)
-    }
-
-    /// Why no fluid can ever reach `point` (what a probe point is expected to be; see
-    /// [`geometry::probe_refusal`]), or `None` where fluid can.
-    pub fn probe_refusal(&self, point: &Vector<D>) -> Option<String> {
-        geometry::probe_refusal(&self.case, &self.stepper.domain, &self.wall_solids, point)
     }
 
     /// Fluid particles inside a wall now (see [`diagnostics::wall_crossings`]).

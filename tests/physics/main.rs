@@ -14,6 +14,7 @@ mod loads;
 mod long_runs;
 mod moving_bodies;
 mod open_boundaries;
+mod oscillating_cylinder;
 mod shifting;
 mod taylor_green;
 mod time_integration;

@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
-# Runs every test of the project: Rust unit, integration (physics) and CLI tests in
-# release mode (the physics tests move thousands of particles), the runs split over
-# processes against serial ones (sph-cli built with its `mpi` feature, under mpirun),
-# then builds and installs the Python module and runs its pytest suite.
+# Runs every test of the project: Rust unit, integration (physics), CLI and MPI tests in
+# release mode (the physics tests move thousands of particles; sph-cli is built once,
+# with its `mpi` feature, so that the runs split over processes under mpirun are checked
+# against serial ones by the same build), then builds and installs the Python module
+# and runs its pytest suite. Each stage's wall time is printed at its end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+start=$SECONDS
+stage() { echo "== $1 done after $((SECONDS - start)) s" >&2; }
 bash scripts/install-deps.sh --test
-cargo test --release --workspace
-cargo test --release -p sph-cli --features mpi --test mpi
+cargo test --release --workspace --features sph-cli/mpi
+stage "Rust and MPI tests"
 bash scripts/install-python.sh
-python3 -m pytest tests/python -q
+stage "Python module build"
+python3 -m pytest tests/python -q --durations=5
+stage "Python tests"

@@ -460,6 +460,27 @@ def test_prescribed_motion_moves_the_walls_and_reports_the_body():
     np.testing.assert_allclose(sim.velocities[wall][on_plate, 0], u_amp * np.cos(omega * 0.3), rtol=1e-12)
 
 
+def test_a_motion_table_from_numpy_drives_the_plate():
+    # the plate's motion as rows [t, x, y] sampled every 0.02 s from (U/ω) sin ωt: the
+    # spline through them moves the plate as the expression does, to the spline's error
+    # (O(Δt⁴) ≈ 1e-8 m in position, O(Δt²) ≈ 1e-4 U in velocity)
+    u_amp, omega = 0.1, 2 * np.pi
+    t = np.arange(0.0, 0.42, 0.02)
+    case = example("validation/stokes_plate", particles__spacing=0.01, time__end=0.3)
+    prescribed = case["wall"][0]["prescribed"]
+    del prescribed["displacement"]
+    prescribed["table"] = np.c_[t, u_amp / omega * np.sin(omega * t), 0 * t]
+    sim = ds.Simulation(case)
+    sim.run(until=0.3)
+    plate = sim.body_motions()["plate"]
+    np.testing.assert_allclose(plate["position"][0], u_amp / omega * np.sin(omega * 0.3), atol=1e-7)
+    np.testing.assert_allclose(plate["velocity"][0], u_amp * np.cos(omega * 0.3), atol=2e-5)
+    # rows that go back in time are refused in one line naming the key
+    prescribed["table"] = np.c_[t[::-1], t, t]
+    with pytest.raises(ValueError, match=r"^wall\[0\]\.prescribed\.table = 21 rows: expected times that increase"):
+        ds.Simulation(case)
+
+
 def test_a_free_body_falls_onto_the_water_and_reports_its_state():
     # the floating box released 2 cm above its draft: it falls and is caught by the water
     case = example(

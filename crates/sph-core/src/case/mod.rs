@@ -25,6 +25,14 @@ pub use size::{bytes_text, memory_limit, SizeEstimate, MAX_PARTICLES, MEMORY_VAR
 use crate::error::{Result, SphError};
 use std::path::Path;
 
+/// The file of a prescribed motion's table, if it is one (not rows).
+fn table_file(m: &mut Option<PrescribedConfig>) -> Option<&mut String> {
+    match m.as_mut()?.table.as_mut()? {
+        MotionTable::File(path) => Some(path),
+        MotionTable::Rows(_) => None,
+    }
+}
+
 impl Case {
     /// Reads and validates a case file.
     pub fn from_file(path: &Path) -> Result<Self> {
@@ -49,15 +57,10 @@ impl Case {
     /// its restart file.
     fn resolve_shape_files(&mut self, folder: &Path) {
         let folder = std::path::absolute(folder).unwrap_or_else(|_| folder.to_path_buf());
-        let shapes = (self.shape.iter_mut()).flat_map(|s| {
-            [
-                s.file.as_mut(),
-                (s.prescribed.as_mut()).and_then(|m| m.table.as_mut()),
-            ]
-        });
-        let tables = (self.tank.iter_mut().map(|t| &mut t.prescribed))
-            .chain(self.wall.iter_mut().map(|w| &mut w.prescribed))
-            .map(|m| m.as_mut().and_then(|m| m.table.as_mut()));
+        let shapes =
+            (self.shape.iter_mut()).flat_map(|s| [s.file.as_mut(), table_file(&mut s.prescribed)]);
+        let tables = (self.tank.iter_mut().map(|t| table_file(&mut t.prescribed)))
+            .chain(self.wall.iter_mut().map(|w| table_file(&mut w.prescribed)));
         for file in shapes.chain(tables).flatten() {
             if Path::new(file.as_str()).is_relative() {
                 *file = folder.join(&*file).display().to_string();

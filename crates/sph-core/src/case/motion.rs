@@ -23,6 +23,26 @@ pub enum MotionChoice {
     Free,
 }
 
+/// A prescribed motion's table: a CSV file or its rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum MotionTable {
+    /// The path of a CSV file.
+    File(String),
+    /// The rows: a time, then the displacements and rotation.
+    Rows(Vec<Vec<f64>>),
+}
+
+impl MotionTable {
+    /// How the table is shown in messages: the file's path quoted, or its row count.
+    pub fn describe(&self) -> String {
+        match self {
+            Self::File(path) => format!("{path:?}"),
+            Self::Rows(rows) => format!("{} rows", rows.len()),
+        }
+    }
+}
+
 /// How one wall region moves, as the case gives it.
 #[derive(Debug, Clone)]
 pub struct BodyMotion<'a> {
@@ -62,14 +82,15 @@ pub struct PrescribedConfig {
     /// and its velocity and acceleration have no jump. Default: 0, no ramp.
     #[serde(default)]
     pub ramp: Option<f64>,
-    /// A CSV file of the motion instead of `displacement` and `rotation`: a column of
-    /// times \[s\] from 0 (or before) to the run's end, then one displacement column
-    /// per axis \[m\], then optionally the rotation (2D the angle, 3D the rotation vector,
-    /// \[rad\]); comma- or space-separated, `#` comments, an optional header line.
-    /// Each column is interpolated by a natural cubic spline (continuous velocity and
-    /// acceleration). A relative path is taken from the case file's folder.
+    /// The motion as a table instead of `displacement` and `rotation`: rows of a time
+    /// \[s\] (from 0 or before to the run's end), one displacement per axis \[m\] and
+    /// optionally the rotation (2D the angle, 3D the rotation vector, \[rad\]). Either a
+    /// CSV file (comma- or space-separated, `#` comments, an optional header line; a
+    /// relative path is taken from the case file's folder) or the rows themselves,
+    /// `[[t, x, y], ...]` (from Python, a 2D numpy array). Each column is interpolated by
+    /// a natural cubic spline (continuous velocity and acceleration).
     #[serde(default)]
-    pub table: Option<String>,
+    pub table: Option<MotionTable>,
     /// Named values the expressions may use (besides `t`, `PI` and `π`).
     #[serde(default)]
     pub constants: Option<BTreeMap<String, f64>>,

@@ -7,7 +7,7 @@
 use super::rigid::{angular_rates, Pose};
 use super::table::{self, Spline};
 use crate::case::expression::{named_values, Compiled, Variables};
-use crate::case::PrescribedConfig;
+use crate::case::{MotionTable, PrescribedConfig};
 use crate::error::{Result, SphError};
 use crate::particles::Vector;
 use crate::waves::active_absorption::ActiveAbsorption;
@@ -92,7 +92,7 @@ impl<const D: usize> PrescribedMotion<D> {
     /// makers).
     pub fn new(key: String, config: &PrescribedConfig, end: f64, g: f64) -> Result<Self> {
         let (displacement, rotation) = match (&config.table, &config.waves) {
-            (Some(file), _) => Self::columns(&key, config, Path::new(file), end)?,
+            (Some(table), _) => Self::columns(&key, config, table, end)?,
             (None, Some(waves)) => Self::wave_maker(PaddleSignal::new(&waves.maker(g), g, D)),
             (None, None) => Self::expressions(&key, config)?,
         };
@@ -142,23 +142,28 @@ impl<const D: usize> PrescribedMotion<D> {
         ))
     }
 
-    /// The columns of the `table` file: t, then D displacements, then the rotation
-    /// (none, or 2D one angle, 3D a rotation vector), each a spline.
+    /// The columns of the `table` (a file or rows): t, then D displacements, then the
+    /// rotation (none, or 2D one angle, 3D a rotation vector), each a spline.
     fn columns(
         key: &str,
         config: &PrescribedConfig,
-        file: &Path,
+        motion_table: &MotionTable,
         end: f64,
     ) -> Result<(Vec<Signal>, Vec<Signal>)> {
         let table_key = format!("{key}.table");
-        let (t, mut columns) = table::read_columns(&table_key, file, end)?;
+        let (t, mut columns) = match motion_table {
+            MotionTable::File(file) => table::read_columns(&table_key, Path::new(file), end)?,
+            MotionTable::Rows(rows) => {
+                table::columns(&table_key, &motion_table.describe(), rows, end)?
+            }
+        };
         let turns = if D == 2 { 1 } else { 3 };
         if columns.len() != D && columns.len() != D + turns {
             return Err(SphError::invalid(
                 table_key,
                 format!(
-                    "{:?} with {} value columns",
-                    file.display().to_string(),
+                    "{} with {} value columns",
+                    motion_table.describe(),
                     columns.len()
                 ),
                 format!(

@@ -69,15 +69,13 @@ impl Spline {
     }
 }
 
-/// The columns of a motion table: times and, per value column, its values. Rows are
-/// lines of numbers separated by commas or spaces; `#` starts a comment, and a first
-/// line that is not numbers is a header. Refused in one line naming `key`: a file
-/// that cannot be read, a row of another width, a value that is not a finite number,
-/// times that do not increase, fewer than two rows, or a table that does not cover
-/// `[0, end]`.
+/// The columns of a motion table's CSV file: rows are lines of numbers separated by
+/// commas or spaces; `#` starts a comment, and a first line that is not numbers is a
+/// header. Refused in one line naming `key`: a file that cannot be read, a line that is
+/// not numbers, and what [`columns`] refuses.
 pub fn read_columns(key: &str, path: &Path, end: f64) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
-    let shown = path.display().to_string();
-    let refuse = |expected: String| Err(SphError::invalid(key, format!("{shown:?}"), expected));
+    let shown = format!("{:?}", path.display().to_string());
+    let refuse = |expected: String| Err(SphError::invalid(key, &shown, expected));
     let text = match std::fs::read_to_string(path) {
         Ok(text) => text,
         Err(e) => return refuse(format!("a readable CSV file ({e})")),
@@ -88,29 +86,39 @@ pub fn read_columns(key: &str, path: &Path, end: f64) -> Result<(Vec<f64>, Vec<V
         if line.is_empty() {
             continue;
         }
-        let words: Vec<&str> = line
-            .split([',', ' ', '\t'])
-            .filter(|w| !w.is_empty())
-            .collect();
-        let numbers: Option<Vec<f64>> = words.iter().map(|w| w.parse::<f64>().ok()).collect();
+        let words = line.split([',', ' ', '\t']).filter(|w| !w.is_empty());
+        let numbers: Option<Vec<f64>> = words.map(|w| w.parse::<f64>().ok()).collect();
         match numbers {
             None if rows.is_empty() => continue,
-            Some(row)
-                if row.iter().all(|v| v.is_finite())
-                    && (rows.is_empty() || row.len() == rows[0].len()) =>
-            {
-                rows.push(row)
-            }
-            _ => {
-                return refuse(format!(
-                    "rows of {} finite numbers (line {}: {line:?})",
-                    rows.first().map_or(0, Vec::len),
-                    line_no + 1
-                ))
-            }
+            Some(row) => rows.push(row),
+            None => return refuse(format!("rows of numbers (line {}: {line:?})", line_no + 1)),
         }
     }
-    if rows.len() < 2 || rows[0].len() < 2 {
+    columns(key, &shown, &rows, end)
+}
+
+/// The columns of a motion table's `rows` (shown as `shown` in messages): times and,
+/// per value column, its values. Refused in one line naming `key`: rows of unequal
+/// width, a value that is not a finite number, times that do not increase, fewer than
+/// two rows, or a table that does not cover `[0, end]`.
+pub fn columns(
+    key: &str,
+    shown: &str,
+    rows: &[Vec<f64>],
+    end: f64,
+) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
+    let refuse = |expected: String| Err(SphError::invalid(key, shown, expected));
+    let width = rows.first().map_or(0, Vec::len);
+    if let Some(k) =
+        (rows.iter()).position(|r| r.len() != width || r.iter().any(|v| !v.is_finite()))
+    {
+        return refuse(format!(
+            "rows of {width} finite numbers (row {}: {:?})",
+            k + 1,
+            rows[k]
+        ));
+    }
+    if rows.len() < 2 || width < 2 {
         return refuse("at least two rows of a time and a value".into());
     }
     let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
@@ -129,7 +137,7 @@ pub fn read_columns(key: &str, path: &Path, end: f64) -> Result<(Vec<f64>, Vec<V
             t[t.len() - 1]
         ));
     }
-    let columns = (1..rows[0].len())
+    let columns = (1..width)
         .map(|c| rows.iter().map(|r| r[c]).collect())
         .collect();
     Ok((t, columns))
@@ -178,7 +186,12 @@ mod tests {
         assert_eq!(c, vec![vec![0.0, 0.1, 0.2], vec![0.0, 0.0, 0.0]]);
         let e = read("short.csv", "0, 0, 0\n1, 1\n", 1.0).unwrap_err();
         assert!(
-            e.contains("expected rows of 3 finite numbers (line 2"),
+            e.contains("expected rows of 3 finite numbers (row 2: [1.0, 1.0])"),
+            "{e}"
+        );
+        let e = read("words.csv", "0, 0\n1, one\n", 1.0).unwrap_err();
+        assert!(
+            e.contains("expected rows of numbers (line 2: \"1, one\")"),
             "{e}"
         );
         let e = read("back.csv", "0, 0\n1, 1\n0.5, 2\n", 0.5).unwrap_err();
@@ -192,7 +205,13 @@ mod tests {
             "{e}"
         );
         let e = read("nan.csv", "0, 0\n1, nan\n", 1.0).unwrap_err();
-        assert!(e.contains("finite numbers (line 2"), "{e}");
+        assert!(e.contains("finite numbers (row 2"), "{e}");
+        let rows = [vec![0.0, 0.0], vec![1.0, 1.0], vec![0.5, 2.0]];
+        let e = columns("shape[0].prescribed.table", "3 rows", &rows, 0.5).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "shape[0].prescribed.table = 3 rows: expected times that increase (row 3 has t = 0.5 after 1)"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

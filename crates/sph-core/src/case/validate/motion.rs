@@ -4,8 +4,8 @@
 
 use crate::case::checks::{components, finite, non_negative, positive};
 use crate::case::motion::{
-    BodyMotion, FreeConfig, MotionChoice, PaddleChoice, PrescribedConfig, SpectrumConfig,
-    SpringConfig, WavesConfig,
+    BodyMotion, FreeConfig, MotionChoice, MotionTable, PaddleChoice, PrescribedConfig,
+    SpectrumConfig, SpringConfig, WavesConfig,
 };
 use crate::case::schema::*;
 use crate::error::{Result, SphError};
@@ -105,7 +105,10 @@ impl Case {
         if m.table.is_some() && (m.displacement.is_some() || m.rotation.is_some()) {
             return Err(SphError::invalid(
                 format!("{key}.table"),
-                format!("{:?}", m.table.as_deref().unwrap_or_default()),
+                m.table
+                    .as_ref()
+                    .map(MotionTable::describe)
+                    .unwrap_or_default(),
                 "either a table or displacement and rotation expressions, not both",
             ));
         }

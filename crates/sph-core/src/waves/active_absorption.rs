@@ -10,10 +10,14 @@
 //! wall's reflection is the incident wave mirrored, so `η_I + η_R = 2 cos(k x_g) η_I(0, t)`
 //! and the incident wave at the paddle is
 //! `η_I(0, t) = (η - G[X₀] - G[X_c]) / (2 cos k x_g)`, with
-//! `G[X_c](x_g, t) = F/ω U_c(t - x_g/c) + E(x_g) X̃_c(t)`
-//! (`F` = H/S the paddle's transfer, `E` its near field, `c` = ω/k, `U_c = X_c'`, kept
-//! on a grid of [`HISTORY`] samples over the delay; `X̃_c` is `X_c` less its running
-//! mean: a slow drift of the paddle makes no waves). The paddle absorbs the incident
+//! `G[X_c](x_g, t) = F/ω U_c(t - x_g/c)`
+//! (`F` = H/S the paddle's transfer, `c` = ω/k, `U_c = X_c'`, kept on a grid of
+//! [`HISTORY`] samples over the delay). The correction's near field (its evanescent
+//! modes) is left in the reading: it follows the paddle's acceleration, and taking it
+//! off as `E(x_g) X̃_c`, exact at ω, fed a slow drift of the paddle back into itself,
+//! so that in deep water (kd = π, `k x_g` = 0.93) the paddle ran away exponentially.
+//! Left in, it reads as `E/F` of the incident wave (the absorbing paddle's reflection at
+//! kd = 1 went from 3.3% to 3.7%, docs/validation/wave_flume.md). The paddle absorbs the incident
 //! wave moving with `U_c = -(ω/F) η_I(0, t)`, the speed at which its own waves carry
 //! `-η_I` away: in shallow water `ω/F → √(g/d)`, the classical `U = -√(g/d) η` of the
 //! long-wave absorber. The residual's slow part (the still level's settling) is taken
@@ -88,8 +92,6 @@ pub struct ActiveAbsorption {
     k: f64,
     /// `F` = H/S at ω.
     transfer: f64,
-    /// `E(x_g)` at ω.
-    near: f64,
     target: Vec<TargetWave>,
     /// Regular waves' bound second harmonic at the gauge: `A₂ cos 2(k x_g - ωt)`.
     bound: f64,
@@ -124,7 +126,6 @@ impl ActiveAbsorption {
             omega,
             k,
             transfer: paddle.height_over_stroke(k, depth),
-            near: paddle.near_field(omega, depth, g, distance),
             target,
             bound,
             state: Correction {
@@ -212,7 +213,7 @@ impl ActiveAbsorption {
             [m1, m2 + (m1 - m2) * weight]
         };
         let x_mean = follow(c.x_mean, x);
-        let made = self.transfer / self.omega * delayed + self.near * (x - x_mean[1]);
+        let made = self.transfer / self.omega * delayed;
         let residual = measured - self.target(t, s) - made;
         let mean = match c.mean[0].is_nan() {
             true => [residual; 2],
@@ -316,64 +317,98 @@ mod tests {
     }
 
     /// In a flume that answers as linear theory does (the paddle's waves reach the
-    /// gauge after `x_g/c`, its near field at once, a fixed wall mirrors the incident
-    /// wave), a wave train arriving at a paddle making waves of its own is absorbed:
+    /// gauge after `x_g/c`; a fixed wall mirrors the incident wave; at kd = 1 its near
+    /// field at once, `E X_c` for the paddle's oscillation at ω and nothing for a slow
+    /// drift), a wave train arriving at a paddle making waves of its own is absorbed:
     /// what leaves the paddle besides its own waves, `η_I(0, t) + (F/ω) U_c(t)`, falls
-    /// below 1% of the incident wave, and a restart record continues the run bit for
-    /// bit.
+    /// below 5% of the incident wave (the near field left in the reading: measured 1.0%
+    /// for the piston, 4.0% for the flap, whose `E/F` is 7%; 0.3% without it), at kd = 1
+    /// with `k x_g` = 0.4 and at kd = π with `k x_g` = 0.93; a restart record continues
+    /// the run bit for bit. (The deep-water paddle's near field, `E/F` = 22%, is left
+    /// to the SPH flume: with it this model's loop grows, which the SPH flume's does not,
+    /// `tests/physics/waves.rs`.)
     #[test]
     fn in_a_linear_flume_the_paddle_takes_the_incident_waves() {
-        for paddle in [Paddle::Piston, Paddle::Flap { hinge: 0.1 }] {
-            let m = maker(paddle);
-            let omega = m.components[0].omega;
-            let period = 2.0 * PI / omega;
-            let mut a = ActiveAbsorption::new(&m, omega, 0.2, G);
-            let (k, xg, f, amp) = (a.k, a.distance, a.transfer, 0.005);
-            let c = omega / k;
-            let envelope = |t: f64| {
-                let tau = (t / (2.0 * period)).clamp(0.0, 1.0);
-                tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau)
-            };
-            let incident = |x: f64, t: f64| amp * envelope(t + x / c) * (k * x + omega * t).cos();
-            let dt = period / 300.0;
-            let mut velocities: Vec<f64> = Vec::new();
-            let (mut out, mut inc) = (0.0, 0.0);
-            let mut copy: Option<ActiveAbsorption> = None;
-            for n in 0..(20.0 * period / dt) as usize {
-                let t = n as f64 * dt;
-                let [x, u, _] = a.correction(t);
-                velocities.push(u);
-                let back = (t - a.delay()) / dt;
-                let delayed = match back < 0.0 {
-                    true => 0.0,
-                    false => {
-                        let (j, w) = (back.floor() as usize, back.fract());
-                        (1.0 - w) * velocities[j] + w * velocities[(j + 1).min(n)]
-                    }
-                };
-                let reading = a.target(t, 1.0)
-                    + incident(xg, t)
-                    + incident(-xg, t)
-                    + f / omega * delayed
-                    + a.near * x;
-                a.update(t, reading, 1.0);
-                if let Some(b) = copy.as_mut() {
-                    b.update(t, reading, 1.0);
-                }
-                if t > 16.0 * period {
-                    let leaving = incident(0.0, t) + f / omega * a.correction(t)[1];
-                    out += leaving * leaving;
-                    inc += incident(0.0, t).powi(2);
-                }
-                if n == 1000 {
-                    let mut b = ActiveAbsorption::new(&m, omega, 0.2, G);
-                    b.restore(&a.record());
-                    copy = Some(b);
-                }
+        for (period, distance, near_field) in [(1.625, 0.2, true), (0.8, 0.1478, false)] {
+            for paddle in [Paddle::Piston, Paddle::Flap { hinge: 0.1 }] {
+                let k_r = linear_flume_reflection(paddle, period, distance, near_field);
+                println!("{paddle:?}, T = {period} s: K_r = {k_r:.4}");
+                assert!(k_r < 0.05, "{paddle:?}, T = {period} s: {k_r}");
             }
-            let k_r = (out / inc).sqrt();
-            assert!(k_r < 0.01, "{paddle:?}: {k_r}");
-            assert_eq!(copy.map(|b| b.record()), Some(a.record()));
         }
+    }
+
+    /// The model flume's steps per period, and a quarter period of them.
+    const STEPS_PER_PERIOD: usize = 300;
+    const QUARTER: usize = STEPS_PER_PERIOD / 4;
+
+    /// The reflection of [`in_a_linear_flume_the_paddle_takes_the_incident_waves`] for
+    /// one paddle, period \[s\] and gauge distance \[m\] (depth 0.5 m), with or without the
+    /// paddle's near field in the reading.
+    fn linear_flume_reflection(
+        paddle: Paddle,
+        period: f64,
+        distance: f64,
+        near_field: bool,
+    ) -> f64 {
+        let mut m = maker(paddle);
+        let omega = 2.0 * PI / period;
+        m.components[0].omega = omega;
+        let mut a = ActiveAbsorption::new(&m, omega, distance, G);
+        let near = match near_field {
+            true => paddle.near_field(omega, m.depth, G, distance),
+            false => 0.0,
+        };
+        let (k, xg, f, amp) = (a.k, a.distance, a.transfer, 0.005);
+        let c = omega / k;
+        let envelope = |t: f64| {
+            let tau = (t / (2.0 * period)).clamp(0.0, 1.0);
+            tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau)
+        };
+        let incident = |x: f64, t: f64| amp * envelope(t + x / c) * (k * x + omega * t).cos();
+        let dt = period / STEPS_PER_PERIOD as f64;
+        let mut velocities: Vec<f64> = Vec::new();
+        let (mut out, mut inc) = (0.0, 0.0);
+        let mut copy: Option<ActiveAbsorption> = None;
+        for n in 0..(20.0 * period / dt) as usize {
+            let t = n as f64 * dt;
+            let [_, u, _] = a.correction(t);
+            velocities.push(u);
+            // the near field E X at ω, read as E U(t - T/4)/ω: exact at ω, and nearly
+            // nothing for a slow drift of the paddle, which makes no evanescent waves
+            let oscillation = match n.checked_sub(QUARTER) {
+                Some(j) => velocities[j] / omega,
+                None => 0.0,
+            };
+            let back = (t - a.delay()) / dt;
+            let delayed = match back < 0.0 {
+                true => 0.0,
+                false => {
+                    let (j, w) = (back.floor() as usize, back.fract());
+                    (1.0 - w) * velocities[j] + w * velocities[(j + 1).min(n)]
+                }
+            };
+            let reading = a.target(t, 1.0)
+                + incident(xg, t)
+                + incident(-xg, t)
+                + f / omega * delayed
+                + near * oscillation;
+            a.update(t, reading, 1.0);
+            if let Some(b) = copy.as_mut() {
+                b.update(t, reading, 1.0);
+            }
+            if t > 16.0 * period {
+                let leaving = incident(0.0, t) + f / omega * a.correction(t)[1];
+                out += leaving * leaving;
+                inc += incident(0.0, t).powi(2);
+            }
+            if n == 1000 {
+                let mut b = ActiveAbsorption::new(&m, omega, distance, G);
+                b.restore(&a.record());
+                copy = Some(b);
+            }
+        }
+        assert_eq!(copy.map(|b| b.record()), Some(a.record()));
+        (out / inc).sqrt()
     }
 }

@@ -145,11 +145,24 @@ def test_load_reads_snapshots_series_and_case(tmp_path):
         ds.load(tmp_path)
 
 
-def deltasph(*args):
-    """The ``deltasph`` command, as its console script runs it."""
+def deltasph(*args, env=None):
+    """The ``deltasph`` command, as its console script runs it (``env``: variables added
+    to the environment)."""
     return subprocess.run([sys.executable, "-c", "import sys, deltasph._cli as c; "
                            "sys.exit(c.main())", *map(str, args)],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, env={**os.environ, **(env or {})})
+
+
+def test_the_deltasph_command_refuses_to_run_under_an_mpi_launcher(tmp_path):
+    # the wheel's command is built without MPI: started by mpirun it would run the whole
+    # case once per process into one folder, so it refuses (the CI's sph-cli is built
+    # with MPI, so this is where the refusal is tested)
+    out = tmp_path / "run"
+    done = deltasph("run", EXAMPLES / "dam_break_2d.toml", "--out", out,
+                    env={"OMPI_COMM_WORLD_SIZE": "2"})
+    assert done.returncode == 2
+    assert done.stderr.startswith("error: started by an MPI launcher"), done.stderr
+    assert not out.exists()
 
 
 def test_the_deltasph_command_is_the_cli(tmp_path):

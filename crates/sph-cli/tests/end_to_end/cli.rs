@@ -419,7 +419,8 @@ fn the_shipped_case_schema_is_current() {
 }
 
 /// Started by mpirun, a build without MPI would run the whole case once per process
-/// into one folder; it refuses instead.
+/// into one folder; it refuses instead. (`scripts/test.sh` builds sph-cli with MPI; the
+/// Python suite checks the same refusal with the wheel's `deltasph` command.)
 #[cfg(not(feature = "mpi"))]
 #[test]
 fn a_build_without_mpi_refuses_to_run_under_a_launcher() {

@@ -40,8 +40,9 @@ FORCE_PEAK = 1.6063
 
 
 def reference(name):
-    """Rows of a reference CSV, its `#` lines skipped."""
-    return np.loadtxt(DATA / name, delimiter=",", comments="#", skiprows=8)
+    """Rows of a reference CSV, its `#` lines and its header skipped."""
+    lines = [line for line in (DATA / name).read_text().splitlines() if not line.startswith("#")]
+    return np.loadtxt(lines[1:], delimiter=",", ndmin=2)
 
 
 def morison(t, force):

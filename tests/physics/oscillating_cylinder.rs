@@ -79,7 +79,7 @@ enum Reading {
 #[test]
 fn an_oscillating_cylinder_meets_the_measured_force_and_velocities() {
     // Measured at D/Δx = 10: force 7.6% of its peak, u 0.122 U_m, v 0.070 U_m; at
-    // D/Δx = 20 (examples/validation/oscillating_cylinder.py) 3.2%, 0.093, 0.056, and
+    // D/Δx = 20 (examples/validation/oscillating_cylinder.py) 3.9%, 0.093, 0.056, and
     // Morison's C_D, C_I 2.26, 1.47 against the data's 2.25, 1.43. The digitised data
     // (grade C) carry a few percent of their own; a cylinder at rest would be off by the
     // whole force (about 70% of the peak, RMS), and c0 = 10 U_m, which brings the

@@ -5,18 +5,22 @@
 //!   support, s a skin), the arrays are reordered by cell so that neighbours sit close
 //!   in memory, and each particle gathers the particles closer than `R + s` from its
 //!   own and the 3^D adjacent cells (wrapped along periodic directions), in parallel
-//!   chunks written into one buffer. Each row holds the fluid neighbours first, then
+//!   chunks copied into one buffer a group at a time (so that the lists are never
+//!   held twice). Each row holds the fluid neighbours first, then
 //!   the walls: the pair loops run the two parts separately, with no per-pair branch
 //!   on the kind. Wall particles keep only fluid neighbours (they interact with the
 //!   fluid, for the pressure extrapolation, never with each other).
 //! - **Validity.** The lists hold every pair closer than `R + s - 2δ` while no particle
 //!   has moved more than δ since the build; [`NeighbourList::max_displacement`] gives δ.
 //! - **Culling.** A step whose particles move by at most `ρ` (its reach) can only use
-//!   pairs closer than `R + 2ρ` at its start. [`NeighbourList::cull`] keeps those in
-//!   each row (in place, in the row's own slot of a second buffer), so that the
-//!   gradient pass and every stage of the step skip the skin: a larger skin then costs
-//!   a cheap distance test per listed pair and step instead of a full pair evaluation
-//!   in every pass, and the lists are rebuilt less often.
+//!   pairs closer than `R + 2ρ` at its start. [`NeighbourList::cull`] moves those to
+//!   the front of each part of the row (fluid, walls), in place, so that the gradient
+//!   pass and every stage of the step skip the skin: a larger skin then costs a cheap
+//!   distance test per listed pair and step instead of a full pair evaluation in every
+//!   pass, and the lists are rebuilt less often. Culling in place keeps one copy of the
+//!   rows; the culled part is kept in increasing index order, so that it (and the order
+//!   of every pair sum) depends only on the positions, not on the culls before it: a
+//!   restarted run, which builds its lists again, sums in the same order.
 
 mod grid;
 mod policy;
@@ -36,13 +40,12 @@ const CHUNK: usize = 256;
 #[derive(Debug, Clone, Default)]
 pub struct NeighbourList<const D: usize> {
     /// Row i of the Verlet lists is `indices[start[i]..start[i+1]]`: fluid neighbours
-    /// in `start[i]..wall_start[i]`, wall neighbours after.
+    /// in `start[i]..wall_start[i]`, wall neighbours after. The culled fluid neighbours
+    /// are the first `fluid_len[i]` of the fluid part, the culled walls the first
+    /// `wall_len[i]` of the wall part.
     start: Vec<usize>,
     wall_start: Vec<usize>,
     indices: Vec<u32>,
-    /// The culled rows, each in the slot of its Verlet row: fluid neighbours at
-    /// `active[start[i]..][..fluid_len[i]]`, walls at `active[wall_start[i]..][..wall_len[i]]`.
-    active: Vec<u32>,
     fluid_len: Vec<u32>,
     wall_len: Vec<u32>,
     /// List radius `R + s`.
@@ -56,8 +59,8 @@ pub struct NeighbourList<const D: usize> {
     walls: Vec<usize>,
 }
 
-/// The part of the culled rows one chunk of particles owns: its first particle, its
-/// slot of `active`, and its fluid and wall lengths.
+/// The part of the rows one chunk of particles owns: its first particle, its slot of
+/// `indices`, and its culled fluid and wall lengths.
 type CullSlot<'a> = (usize, &'a mut [u32], &'a mut [u32], &'a mut [u32]);
 
 /// The rows of one chunk of particles, as built.
@@ -67,21 +70,71 @@ struct ChunkRows {
     indices: Vec<u32>,
 }
 
-/// The chunks' indices one after another in one buffer, copied in parallel.
-fn concatenate(chunks: &[ChunkRows]) -> Vec<u32> {
+/// Chunks copied into the buffer at once: the most rows held twice while copying.
+const COPY_GROUP: usize = 64;
+
+/// The chunks' indices one after another in one buffer, copied in parallel a group of
+/// chunks at a time, each group freed once copied.
+fn concatenate(chunks: Vec<ChunkRows>) -> Vec<u32> {
     let total: usize = chunks.iter().map(|c| c.indices.len()).sum();
     let mut indices = vec![0u32; total];
-    let mut parts = Vec::with_capacity(chunks.len());
     let mut rest = &mut indices[..];
-    for chunk in chunks {
-        let (part, tail) = rest.split_at_mut(chunk.indices.len());
-        parts.push((part, &chunk.indices));
-        rest = tail;
+    let mut chunks = chunks.into_iter();
+    loop {
+        let group: Vec<ChunkRows> = chunks.by_ref().take(COPY_GROUP).collect();
+        if group.is_empty() {
+            return indices;
+        }
+        let mut parts = Vec::with_capacity(group.len());
+        for chunk in &group {
+            let (part, tail) = std::mem::take(&mut rest).split_at_mut(chunk.indices.len());
+            parts.push((part, &chunk.indices));
+            rest = tail;
+        }
+        parts
+            .into_par_iter()
+            .for_each(|(part, from)| part.copy_from_slice(from));
     }
-    parts
-        .into_par_iter()
-        .for_each(|(part, from)| part.copy_from_slice(from));
-    indices
+}
+
+/// Moves the entries `j` of `part` for which `near(j)` holds to its front, in
+/// increasing order, and returns how many there are; the first `sorted` entries are
+/// in increasing order (the last call's near entries), `far` is scratch room as long
+/// as `part`. The near entries are compacted in place and the others gathered in
+/// `far`, both branch-free, so the near ones among the first `sorted` stay in order;
+/// from one step to the next only a few pairs enter the radius, and only those are
+/// sorted into place.
+fn keep_sorted(
+    part: &mut [u32],
+    sorted: usize,
+    far: &mut [u32],
+    near: impl Fn(u32) -> bool,
+) -> usize {
+    let (mut m, mut q, len) = (0, 0, part.len());
+    let mut compact = |range: std::ops::Range<usize>| {
+        for e in range {
+            let j = part[e];
+            let keep = near(j);
+            part[m] = j;
+            far[q] = j;
+            m += usize::from(keep);
+            q += usize::from(!keep);
+        }
+        m
+    };
+    let in_order = compact(0..sorted);
+    compact(sorted..len);
+    part[m..].copy_from_slice(&far[..q]);
+    for k in in_order.max(1)..m {
+        let v = part[k];
+        let mut p = k;
+        while p > 0 && part[p - 1] > v {
+            part[p] = part[p - 1];
+            p -= 1;
+        }
+        part[p] = v;
+    }
+    m
 }
 
 impl<const D: usize> NeighbourList<D> {
@@ -142,7 +195,7 @@ impl<const D: usize> NeighbourList<D> {
     }
 
     /// The Verlet rows of the particles at `x` (sorted by cell in `grid`) that `listed`
-    /// accepts, empty rows for the others; all active.
+    /// accepts, empty rows for the others; all kept.
     fn gather(
         x: &[Vector<D>],
         kind: &[Kind],
@@ -184,6 +237,13 @@ impl<const D: usize> NeighbourList<D> {
                         }
                     });
                     let fluid = out.indices.len() - before;
+                    // cells visited in increasing order give sorted rows (a periodic
+                    // wrap does not)
+                    for part in [&mut out.indices[before..], &mut walls[..]] {
+                        if !part.is_sorted() {
+                            part.sort_unstable();
+                        }
+                    }
                     out.indices.extend_from_slice(&walls);
                     out.counts.push((fluid as u32, walls.len() as u32));
                 }
@@ -203,9 +263,8 @@ impl<const D: usize> NeighbourList<D> {
                 wall_len.push(w);
             }
         }
-        let indices = concatenate(&chunks);
+        let indices = concatenate(chunks);
         Self {
-            active: indices.par_iter().copied().collect(),
             start,
             wall_start,
             indices,
@@ -224,51 +283,44 @@ impl<const D: usize> NeighbourList<D> {
         &self.walls
     }
 
-    /// Keeps, in every row, the listed neighbours closer than `radius` at positions
+    /// Moves to the front of every row part the listed neighbours closer than `radius` at positions
     /// `x`: the pairs a step whose particles move by at most `(radius - R)/2` can use.
     /// `radius` must not exceed `R + s - 2δ` (δ the displacement since the build), so
     /// that no pair closer than it is missing from the Verlet rows.
     pub fn cull(&mut self, x: &[Vector<D>], domain: &Domain<D>, radius: f64) {
         let n = self.x_ref.len();
         let r2 = radius * radius;
-        let (start, wall_start, indices) = (&self.start, &self.wall_start, &self.indices);
-        // each chunk of rows owns the contiguous part of `active` its Verlet rows span
+        let (start, wall_start) = (&self.start, &self.wall_start);
+        // each chunk of rows owns the contiguous part of `indices` its rows span
         let mut slots: Vec<CullSlot> = Vec::new();
-        let (mut active, mut fluid_len, mut wall_len) = (
-            &mut self.active[..],
+        let (mut rows, mut fluid_len, mut wall_len) = (
+            &mut self.indices[..],
             &mut self.fluid_len[..],
             &mut self.wall_len[..],
         );
         for c in 0..n.div_ceil(CHUNK) {
             let (first, last) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
-            let (a, rest_a) = active.split_at_mut(start[last] - start[first]);
+            let (r, rest_r) = rows.split_at_mut(start[last] - start[first]);
             let (f, rest_f) = fluid_len.split_at_mut(last - first);
             let (w, rest_w) = wall_len.split_at_mut(last - first);
-            slots.push((first, a, f, w));
-            (active, fluid_len, wall_len) = (rest_a, rest_f, rest_w);
+            slots.push((first, r, f, w));
+            (rows, fluid_len, wall_len) = (rest_r, rest_f, rest_w);
         }
         slots
             .into_par_iter()
-            .for_each(|(first, active, fluid_len, wall_len)| {
+            .for_each(|(first, rows, fluid_len, wall_len)| {
                 let base = start[first];
+                let longest = (first..first + fluid_len.len()).map(|i| start[i + 1] - start[i]);
+                let mut far = vec![0; longest.max().unwrap_or(0)];
                 for k in 0..fluid_len.len() {
                     let i = first + k;
                     let xi = &x[i];
-                    let keep = |from: usize, to: usize, out: &mut [u32]| -> u32 {
-                        let mut m = 0;
-                        // branch-free: every entry is written, the kept ones advance
-                        for &j in &indices[from..to] {
-                            out[m] = j;
-                            m += usize::from(
-                                domain.separation(xi, &x[j as usize]).norm_squared() < r2,
-                            );
-                        }
-                        m as u32
-                    };
+                    let near = |j: u32| domain.separation(xi, &x[j as usize]).norm_squared() < r2;
                     let (s, w, e) = (start[i] - base, wall_start[i] - base, start[i + 1] - base);
-                    let (fluid_part, wall_part) = active[s..e].split_at_mut(w - s);
-                    fluid_len[k] = keep(start[i], wall_start[i], fluid_part);
-                    wall_len[k] = keep(wall_start[i], start[i + 1], wall_part);
+                    let (fluid_part, wall_part) = rows[s..e].split_at_mut(w - s);
+                    let (f, w) = (fluid_len[k] as usize, wall_len[k] as usize);
+                    fluid_len[k] = keep_sorted(fluid_part, f, &mut far, near) as u32;
+                    wall_len[k] = keep_sorted(wall_part, w, &mut far, near) as u32;
                 }
             });
     }
@@ -291,14 +343,14 @@ impl<const D: usize> NeighbourList<D> {
     /// Fluid neighbours of particle i (culled).
     #[inline(always)]
     pub fn fluid(&self, i: usize) -> &[u32] {
-        &self.active[self.start[i]..self.start[i] + self.fluid_len[i] as usize]
+        &self.indices[self.start[i]..self.start[i] + self.fluid_len[i] as usize]
     }
 
     /// Wall neighbours of particle i (culled; none for a wall particle).
     #[inline(always)]
     pub fn walls(&self, i: usize) -> &[u32] {
         let s = self.wall_start[i];
-        &self.active[s..s + self.wall_len[i] as usize]
+        &self.indices[s..s + self.wall_len[i] as usize]
     }
 
     /// Every neighbour of particle i (culled): the fluid ones, then the walls.
@@ -505,6 +557,32 @@ mod tests {
         }
         let (listed, active) = list.mean_neighbours();
         assert!(active < 0.7 * listed, "{active} of {listed}");
+    }
+
+    /// The culled rows depend on the positions only: after culls at several positions,
+    /// they equal, entry for entry, the rows of lists built again from the same build
+    /// positions and culled once (what a restarted run does), in increasing order.
+    #[test]
+    fn culled_rows_do_not_depend_on_earlier_culls() {
+        let mut p = random_set::<2>(3000, 21);
+        let domain = Domain::new(Vector::zeros(), Vector::repeat(1.0), [true, false]);
+        let (mut list, _) = NeighbourList::build(&mut p, &domain, 0.05, 0.03);
+        let reference = list.reference_positions().to_vec();
+        let mut rng = SmallRng::seed_from_u64(22);
+        for _ in 0..4 {
+            for x in p.x.iter_mut() {
+                *x += Vector::<2>::from_fn(|_, _| 0.004 * (rng.random::<f64>() - 0.5));
+                domain.wrap(x);
+            }
+            list.cull(&p.x, &domain, 0.06);
+        }
+        let mut again = NeighbourList::restore(&p.kind, &domain, 0.05, 0.03, reference).unwrap();
+        again.cull(&p.x, &domain, 0.06);
+        for i in 0..p.len() {
+            assert_eq!(list.fluid(i), again.fluid(i), "particle {i}");
+            assert_eq!(list.walls(i), again.walls(i), "particle {i}");
+            assert!(list.fluid(i).is_sorted() && list.walls(i).is_sorted());
+        }
     }
 
     #[test]

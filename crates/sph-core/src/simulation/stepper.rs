@@ -167,6 +167,8 @@ impl<const D: usize> Stepper<D> {
         let support = self.policy.support;
         let skin = self.policy.skin(reach);
         let p = &mut state.particles;
+        // the old lists go before the new ones are built: never two sets in memory
+        self.list = NeighbourList::default();
         if let Some(r) = self.ranks.as_mut() {
             r.redistribute(p, &self.domain, support + skin);
         }

@@ -5,7 +5,9 @@ nodes, one process per node with its threads, split by recursive coordinate bise
 Measured here (2-core machine; docs/scaling.md gives the commands):
   RATE_PER_CORE  3D particle-steps/s per core (docs/scaling.md: 0.26-0.33 M on
                  2 threads at 10^5-10^6 particles, h = 2Δx)
-  BYTES          resident bytes per particle in 3D (docs/testing.md: 2 240 at 10^6, h = 2Δx)
+  BYTES          resident bytes per particle in 3D (docs/testing.md: 957 measured at
+                 10^6 and h = 1.33Δx, 305 of them in the neighbour rows; the rows
+                 grow as (R + s)^3, about 3x at h = 2Δx: 1 600)
   SKIN           the list skin over the support: the dam breaks' halos are 7.0
                  spacings deep at R = 2.66Δx with two passes, 2 (R + s) = 7.0Δx
   REFRESHES      halo refreshes per RK4 step (244 in 61 steps, 3D dam break)
@@ -25,7 +27,7 @@ N = 1e8                      # particles of the 3D case
 RATE_PER_CORE = 0.15e6       # particle-steps/s per core (measured, 3D)
 THREAD_EFFICIENCY = 0.6      # assumed at 64 threads (memory bandwidth)
 CORES = 64                   # assumed node: 2 × 32 cores, 256 GB
-BYTES = 2240                 # bytes per particle (measured, 3D)
+BYTES = 1600                 # bytes per particle, 3D, h = 2Δx (estimated, below)
 SUPPORT = 4.0                # kernel support in spacings (Wendland C2, h = 2Δx, default)
 SKIN = 0.33                  # list skin over the support (measured)
 PASSES = 2                   # pair passes per evaluation (δ-SPH: gradient, pair loop)

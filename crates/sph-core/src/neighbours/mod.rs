@@ -4,12 +4,13 @@
 //! - **Build.** Particles are binned into cubic cells of side `>= R + s` (R the kernel
 //!   support, s a skin), the arrays are reordered by cell so that neighbours sit close
 //!   in memory, and each particle gathers the particles closer than `R + s` from its
-//!   own and the 3^D adjacent cells (wrapped along periodic directions), in parallel
-//!   chunks copied into one buffer a group at a time (so that the lists are never
-//!   held twice). Each row holds the fluid neighbours first, then
-//!   the walls: the pair loops run the two parts separately, with no per-pair branch
-//!   on the kind. Wall particles keep only fluid neighbours (they interact with the
-//!   fluid, for the pressure extrapolation, never with each other).
+//!   own and the 3^D adjacent cells (wrapped along periodic directions). The rows are
+//!   built and kept in blocks of [`CHUNK`] particles ([`RowBlock`]), one parallel task
+//!   each, so that no list is ever copied into a second buffer. Each row holds the
+//!   fluid neighbours first, then the walls: the pair loops run the two parts
+//!   separately, with no per-pair branch on the kind. Wall particles keep only fluid
+//!   neighbours (they interact with the fluid, for the pressure extrapolation, never
+//!   with each other).
 //! - **Validity.** The lists hold every pair closer than `R + s - 2δ` while no particle
 //!   has moved more than δ since the build; [`NeighbourList::max_displacement`] gives δ.
 //! - **Culling.** A step whose particles move by at most `ρ` (its reach) can only use
@@ -32,22 +33,14 @@ use crate::particles::{Kind, Particles, Vector};
 use grid::Grid;
 use rayon::prelude::*;
 
-/// Particles per parallel chunk of the list build and the culling.
+/// Particles per block of rows: the unit of the parallel build and culling.
 const CHUNK: usize = 256;
 
-/// Verlet lists in compressed-row form, their culled rows, and the cell grid they came
-/// from.
+/// Verlet lists in blocks of rows, and the cell grid they came from.
 #[derive(Debug, Clone, Default)]
 pub struct NeighbourList<const D: usize> {
-    /// Row i of the Verlet lists is `indices[start[i]..start[i+1]]`: fluid neighbours
-    /// in `start[i]..wall_start[i]`, wall neighbours after. The culled fluid neighbours
-    /// are the first `fluid_len[i]` of the fluid part, the culled walls the first
-    /// `wall_len[i]` of the wall part.
-    start: Vec<usize>,
-    wall_start: Vec<usize>,
-    indices: Vec<u32>,
-    fluid_len: Vec<u32>,
-    wall_len: Vec<u32>,
+    /// Particle i's row is row `i % CHUNK` of block `i / CHUNK`.
+    blocks: Vec<RowBlock>,
     /// List radius `R + s`.
     radius: f64,
     /// Skin `s`.
@@ -59,41 +52,25 @@ pub struct NeighbourList<const D: usize> {
     walls: Vec<usize>,
 }
 
-/// The part of the rows one chunk of particles owns: its first particle, its slot of
-/// `indices`, and its culled fluid and wall lengths.
-type CullSlot<'a> = (usize, &'a mut [u32], &'a mut [u32], &'a mut [u32]);
-
-/// The rows of one chunk of particles, as built.
-struct ChunkRows {
-    /// Fluid and wall neighbour counts of each particle of the chunk.
-    counts: Vec<(u32, u32)>,
+/// The rows of [`CHUNK`] consecutive particles in compressed-row form; each part of a
+/// row (fluid, walls) holds its culled entries first, in increasing index order.
+#[derive(Debug, Clone, Default)]
+struct RowBlock {
+    /// Row k is `indices[start[k]..start[k + 1]]`: fluid neighbours before
+    /// `wall_start[k]`, wall neighbours after.
+    start: Vec<u32>,
+    wall_start: Vec<u32>,
     indices: Vec<u32>,
+    /// How many entries of each row's fluid and wall parts the last cull kept.
+    fluid_len: Vec<u32>,
+    wall_len: Vec<u32>,
 }
 
-/// Chunks copied into the buffer at once: the most rows held twice while copying.
-const COPY_GROUP: usize = 64;
-
-/// The chunks' indices one after another in one buffer, copied in parallel a group of
-/// chunks at a time, each group freed once copied.
-fn concatenate(chunks: Vec<ChunkRows>) -> Vec<u32> {
-    let total: usize = chunks.iter().map(|c| c.indices.len()).sum();
-    let mut indices = vec![0u32; total];
-    let mut rest = &mut indices[..];
-    let mut chunks = chunks.into_iter();
-    loop {
-        let group: Vec<ChunkRows> = chunks.by_ref().take(COPY_GROUP).collect();
-        if group.is_empty() {
-            return indices;
-        }
-        let mut parts = Vec::with_capacity(group.len());
-        for chunk in &group {
-            let (part, tail) = std::mem::take(&mut rest).split_at_mut(chunk.indices.len());
-            parts.push((part, &chunk.indices));
-            rest = tail;
-        }
-        parts
-            .into_par_iter()
-            .for_each(|(part, from)| part.copy_from_slice(from));
+impl RowBlock {
+    /// Row k's fluid and wall parts as entry ranges.
+    fn parts(&self, k: usize) -> [(usize, usize); 2] {
+        let (s, w, e) = (self.start[k], self.wall_start[k], self.start[k + 1]);
+        [(s as usize, w as usize), (w as usize, e as usize)]
     }
 }
 
@@ -207,69 +184,59 @@ impl<const D: usize> NeighbourList<D> {
     ) -> Self {
         let n = x.len();
         let r2 = radius * radius;
-        let chunks: Vec<ChunkRows> = (0..n.div_ceil(CHUNK))
+        let blocks: Vec<RowBlock> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|c| {
                 let rows = c * CHUNK..((c + 1) * CHUNK).min(n);
-                let mut out = ChunkRows {
-                    counts: Vec::with_capacity(rows.len()),
+                let mut block = RowBlock {
+                    start: Vec::with_capacity(rows.len() + 1),
+                    wall_start: Vec::with_capacity(rows.len()),
                     indices: Vec::with_capacity(rows.len() * 48),
+                    fluid_len: Vec::with_capacity(rows.len()),
+                    wall_len: Vec::with_capacity(rows.len()),
                 };
+                block.start.push(0);
                 let mut walls = Vec::with_capacity(32);
                 for i in rows {
                     let (xi, wall_i) = (&x[i], kind[i] == Kind::Wall);
-                    if !listed(xi, kind[i]) {
-                        out.counts.push((0, 0));
-                        continue;
+                    if listed(xi, kind[i]) {
+                        grid.for_adjacent(&grid.coords(xi), |cell| {
+                            for j in grid.cell_range(cell) {
+                                if j == i || domain.separation(xi, &x[j]).norm_squared() >= r2 {
+                                    continue;
+                                }
+                                match kind[j] {
+                                    Kind::Fluid => block.indices.push(j as u32),
+                                    Kind::Wall if !wall_i => walls.push(j as u32),
+                                    Kind::Wall => {}
+                                }
+                            }
+                        });
                     }
-                    let before = out.indices.len();
-                    walls.clear();
-                    grid.for_adjacent(&grid.coords(xi), |cell| {
-                        for j in grid.cell_range(cell) {
-                            if j == i || domain.separation(xi, &x[j]).norm_squared() >= r2 {
-                                continue;
-                            }
-                            match kind[j] {
-                                Kind::Fluid => out.indices.push(j as u32),
-                                Kind::Wall if !wall_i => walls.push(j as u32),
-                                Kind::Wall => {}
-                            }
-                        }
-                    });
-                    let fluid = out.indices.len() - before;
+                    let (s, w) = (
+                        block.start[block.start.len() - 1] as usize,
+                        block.indices.len(),
+                    );
                     // cells visited in increasing order give sorted rows (a periodic
                     // wrap does not)
-                    for part in [&mut out.indices[before..], &mut walls[..]] {
+                    for part in [&mut block.indices[s..w], &mut walls[..]] {
                         if !part.is_sorted() {
                             part.sort_unstable();
                         }
                     }
-                    out.indices.extend_from_slice(&walls);
-                    out.counts.push((fluid as u32, walls.len() as u32));
+                    block.wall_start.push(w as u32);
+                    block.indices.extend_from_slice(&walls);
+                    block.start.push(block.indices.len() as u32);
+                    block.fluid_len.push((w - s) as u32);
+                    block.wall_len.push(walls.len() as u32);
+                    walls.clear();
                 }
-                out
+                block.indices.shrink_to_fit();
+                block
             })
             .collect();
-        let mut start = Vec::with_capacity(n + 1);
-        start.push(0);
-        let mut wall_start = Vec::with_capacity(n);
-        let (mut fluid_len, mut wall_len) = (Vec::with_capacity(n), Vec::with_capacity(n));
-        for chunk in &chunks {
-            for &(f, w) in &chunk.counts {
-                let s = start[start.len() - 1];
-                wall_start.push(s + f as usize);
-                start.push(s + (f + w) as usize);
-                fluid_len.push(f);
-                wall_len.push(w);
-            }
-        }
-        let indices = concatenate(chunks);
         Self {
-            start,
-            wall_start,
-            indices,
-            fluid_len,
-            wall_len,
+            blocks,
             radius,
             skin,
             grid,
@@ -283,44 +250,30 @@ impl<const D: usize> NeighbourList<D> {
         &self.walls
     }
 
-    /// Moves to the front of every row part the listed neighbours closer than `radius` at positions
+    /// Keeps, in every row, the listed neighbours closer than `radius` at positions
     /// `x`: the pairs a step whose particles move by at most `(radius - R)/2` can use.
     /// `radius` must not exceed `R + s - 2δ` (δ the displacement since the build), so
     /// that no pair closer than it is missing from the Verlet rows.
     pub fn cull(&mut self, x: &[Vector<D>], domain: &Domain<D>, radius: f64) {
-        let n = self.x_ref.len();
         let r2 = radius * radius;
-        let (start, wall_start) = (&self.start, &self.wall_start);
-        // each chunk of rows owns the contiguous part of `indices` its rows span
-        let mut slots: Vec<CullSlot> = Vec::new();
-        let (mut rows, mut fluid_len, mut wall_len) = (
-            &mut self.indices[..],
-            &mut self.fluid_len[..],
-            &mut self.wall_len[..],
-        );
-        for c in 0..n.div_ceil(CHUNK) {
-            let (first, last) = (c * CHUNK, ((c + 1) * CHUNK).min(n));
-            let (r, rest_r) = rows.split_at_mut(start[last] - start[first]);
-            let (f, rest_f) = fluid_len.split_at_mut(last - first);
-            let (w, rest_w) = wall_len.split_at_mut(last - first);
-            slots.push((first, r, f, w));
-            (rows, fluid_len, wall_len) = (rest_r, rest_f, rest_w);
-        }
-        slots
-            .into_par_iter()
-            .for_each(|(first, rows, fluid_len, wall_len)| {
-                let base = start[first];
-                let longest = (first..first + fluid_len.len()).map(|i| start[i + 1] - start[i]);
-                let mut far = vec![0; longest.max().unwrap_or(0)];
-                for k in 0..fluid_len.len() {
-                    let i = first + k;
-                    let xi = &x[i];
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(c, block)| {
+                let longest = block.start.windows(2).map(|r| r[1] - r[0]).max();
+                let mut far = vec![0; longest.unwrap_or(0) as usize];
+                for k in 0..block.fluid_len.len() {
+                    let xi = &x[c * CHUNK + k];
                     let near = |j: u32| domain.separation(xi, &x[j as usize]).norm_squared() < r2;
-                    let (s, w, e) = (start[i] - base, wall_start[i] - base, start[i + 1] - base);
-                    let (fluid_part, wall_part) = rows[s..e].split_at_mut(w - s);
-                    let (f, w) = (fluid_len[k] as usize, wall_len[k] as usize);
-                    fluid_len[k] = keep_sorted(fluid_part, f, &mut far, near) as u32;
-                    wall_len[k] = keep_sorted(wall_part, w, &mut far, near) as u32;
+                    let [(s, w), (w2, e)] = block.parts(k);
+                    let (rows, f, w_len) = (
+                        &mut block.indices,
+                        &mut block.fluid_len,
+                        &mut block.wall_len,
+                    );
+                    f[k] = keep_sorted(&mut rows[s..w], f[k] as usize, &mut far, near) as u32;
+                    w_len[k] =
+                        keep_sorted(&mut rows[w2..e], w_len[k] as usize, &mut far, near) as u32;
                 }
             });
     }
@@ -340,17 +293,26 @@ impl<const D: usize> NeighbourList<D> {
         &self.x_ref
     }
 
+    /// Particle i's block of rows and its row there.
+    #[inline(always)]
+    fn row(&self, i: usize) -> (&RowBlock, usize) {
+        (&self.blocks[i / CHUNK], i % CHUNK)
+    }
+
     /// Fluid neighbours of particle i (culled).
     #[inline(always)]
     pub fn fluid(&self, i: usize) -> &[u32] {
-        &self.indices[self.start[i]..self.start[i] + self.fluid_len[i] as usize]
+        let (block, k) = self.row(i);
+        let s = block.start[k] as usize;
+        &block.indices[s..s + block.fluid_len[k] as usize]
     }
 
     /// Wall neighbours of particle i (culled; none for a wall particle).
     #[inline(always)]
     pub fn walls(&self, i: usize) -> &[u32] {
-        let s = self.wall_start[i];
-        &self.indices[s..s + self.wall_len[i] as usize]
+        let (block, k) = self.row(i);
+        let s = block.wall_start[k] as usize;
+        &block.indices[s..s + block.wall_len[k] as usize]
     }
 
     /// Every neighbour of particle i (culled): the fluid ones, then the walls.
@@ -365,13 +327,16 @@ impl<const D: usize> NeighbourList<D> {
     /// Mean number of neighbours per particle in the Verlet lists, and in the culled rows.
     pub fn mean_neighbours(&self) -> (f64, f64) {
         let n = self.x_ref.len().max(1) as f64;
-        let active: u64 = self
-            .fluid_len
-            .iter()
-            .zip(&self.wall_len)
-            .map(|(&f, &w)| (f + w) as u64)
-            .sum();
-        (self.indices.len() as f64 / n, active as f64 / n)
+        let (listed, active) = self.blocks.iter().fold((0, 0), |(l, a), b| {
+            let kept: u64 = b
+                .fluid_len
+                .iter()
+                .chain(&b.wall_len)
+                .map(|&c| c as u64)
+                .sum();
+            (l + b.indices.len() as u64, a + kept)
+        });
+        (listed as f64 / n, active as f64 / n)
     }
 
     /// The largest displacement of a particle since the build (infinite when the

@@ -5,7 +5,7 @@
 //!   support, s a skin), the arrays are reordered by cell so that neighbours sit close
 //!   in memory, and each particle gathers the particles closer than `R + s` from its
 //!   own and the 3^D adjacent cells (wrapped along periodic directions). The rows are
-//!   built and kept in blocks of [`CHUNK`] particles ([`RowBlock`]), one parallel task
+//!   built and kept in blocks of `CHUNK` particles (`RowBlock`), one parallel task
 //!   each, so that no list is ever copied into a second buffer. Each row holds the
 //!   fluid neighbours first, then the walls: the pair loops run the two parts
 //!   separately, with no per-pair branch on the kind. Wall particles keep only fluid

@@ -66,14 +66,6 @@ struct RowBlock {
     wall_len: Vec<u32>,
 }
 
-impl RowBlock {
-    /// Row k's fluid and wall parts as entry ranges.
-    fn parts(&self, k: usize) -> [(usize, usize); 2] {
-        let (s, w, e) = (self.start[k], self.wall_start[k], self.start[k + 1]);
-        [(s as usize, w as usize), (w as usize, e as usize)]
-    }
-}
-
 /// Moves the entries `j` of `part` for which `near(j)` holds to its front, in
 /// increasing order, and returns how many there are; the first `sorted` entries are
 /// in increasing order (the last call's near entries), `far` is scratch room as long
@@ -260,20 +252,26 @@ impl<const D: usize> NeighbourList<D> {
             .par_iter_mut()
             .enumerate()
             .for_each(|(c, block)| {
-                let longest = block.start.windows(2).map(|r| r[1] - r[0]).max();
+                let RowBlock {
+                    start,
+                    wall_start,
+                    indices,
+                    fluid_len,
+                    wall_len,
+                } = block;
+                let longest = start.windows(2).map(|r| r[1] - r[0]).max();
                 let mut far = vec![0; longest.unwrap_or(0) as usize];
-                for k in 0..block.fluid_len.len() {
+                for k in 0..fluid_len.len() {
                     let xi = &x[c * CHUNK + k];
                     let near = |j: u32| domain.separation(xi, &x[j as usize]).norm_squared() < r2;
-                    let [(s, w), (w2, e)] = block.parts(k);
-                    let (rows, f, w_len) = (
-                        &mut block.indices,
-                        &mut block.fluid_len,
-                        &mut block.wall_len,
+                    let (s, w, e) = (
+                        start[k] as usize,
+                        wall_start[k] as usize,
+                        start[k + 1] as usize,
                     );
-                    f[k] = keep_sorted(&mut rows[s..w], f[k] as usize, &mut far, near) as u32;
-                    w_len[k] =
-                        keep_sorted(&mut rows[w2..e], w_len[k] as usize, &mut far, near) as u32;
+                    let (fluid, walls) = indices[s..e].split_at_mut(w - s);
+                    fluid_len[k] = keep_sorted(fluid, fluid_len[k] as usize, &mut far, near) as u32;
+                    wall_len[k] = keep_sorted(walls, wall_len[k] as usize, &mut far, near) as u32;
                 }
             });
     }

@@ -3,7 +3,7 @@
 # release mode (the physics tests move thousands of particles; sph-cli is built once,
 # with its `mpi` feature, so that the runs split over processes under mpirun are checked
 # against serial ones by the same build), then builds and installs the Python module
-# and runs its pytest suite. Each stage's wall time is printed at its end.
+# and runs its pytest suite (with the sph-cli binary built for the Rust tests). Each stage's wall time is printed at its end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
@@ -13,5 +13,6 @@ cargo test --release --workspace --features sph-cli/mpi
 stage "Rust and MPI tests"
 bash scripts/install-python.sh
 stage "Python module build"
-python3 -m pytest tests/python -q --durations=5
+# the CLI the Rust tests built (with mpi), instead of a second build without it
+SPH_CLI="$PWD/target/release/sph-cli" python3 -m pytest tests/python -q --durations=5
 stage "Python tests"

@@ -286,7 +286,7 @@ fn an_open_channel_restarts_bit_for_bit() {
     while whole.time() < 0.5 * (1.0 - 1e-12) {
         whole.step_until(0.5).unwrap();
     }
-    let checkpoint = whole.checkpoint().unwrap();
+    let checkpoint = whole.checkpoint().unwrap().into_owned();
     let run_to_end = |sim: &mut Simulation<2>| {
         while sim.time() < 1.0 * (1.0 - 1e-12) {
             sim.step().unwrap();

@@ -36,6 +36,12 @@ def test_toml_and_dict_give_identical_runs():
 
 
 def cli_binary():
+    """The sph-cli these tests run: $SPH_CLI when set (scripts/test.sh passes the one its
+    Rust tests built, with the mpi feature, so that CI compiles it once), else a release
+    build of this tree."""
+    given = os.environ.get("SPH_CLI")
+    if given:
+        return pathlib.Path(given)
     subprocess.run(
         ["cargo", "build", "--release", "-q", "-p", "sph-cli"], cwd=ROOT, check=True
     )

@@ -17,6 +17,7 @@
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Particles, Vector};
 use crate::simulation::{Checkpoint, Counters, EnergyBudget};
+use std::borrow::Cow;
 use std::path::Path;
 
 /// Where the driver of a run stands in its output schedule.
@@ -34,15 +35,11 @@ pub struct Schedule {
     pub initial_energy: f64,
 }
 
-fn flat<const D: usize>(v: &[Vector<D>]) -> Vec<f64> {
-    v.iter().flat_map(|x| x.iter().copied()).collect()
-}
-
 /// Writes `checkpoint` and `schedule` to `path` and syncs it to disk (the caller
 /// renames it into place).
 pub fn write_file<const D: usize>(
     path: &Path,
-    checkpoint: &Checkpoint<D>,
+    checkpoint: &Checkpoint<'_, D>,
     schedule: &Schedule,
 ) -> Result<()> {
     write_h5(path, checkpoint, schedule).map_err(|e| SphError::output(path, e))?;
@@ -51,7 +48,7 @@ pub fn write_file<const D: usize>(
         .map_err(|e| SphError::output(path, e))
 }
 
-fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf5::Result<()> {
+fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<'_, D>, s: &Schedule) -> hdf5::Result<()> {
     let file = hdf5::File::create(path)?;
     let p = &c.particles;
     let n = p.len();
@@ -59,7 +56,7 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<D>, s: &Schedule) -> hdf
         file.new_dataset::<f64>()
             .shape((n, D))
             .create(name)?
-            .write_raw(&flat(v))
+            .write_raw(crate::particles::components(v))
     };
     vector("position", &p.x)?;
     vector("velocity", &p.u)?;
@@ -161,7 +158,7 @@ pub fn dimension(path: &Path) -> Result<usize> {
 }
 
 /// Reads a restart file written by [`write_file`] for a `D`-dimensional run.
-pub fn read<const D: usize>(path: &Path) -> Result<(Checkpoint<D>, Schedule)> {
+pub fn read<const D: usize>(path: &Path) -> Result<(Checkpoint<'static, D>, Schedule)> {
     if dimension(path)? != D {
         return Err(SphError::output(path, format!("not a {D}D restart file")));
     }
@@ -214,7 +211,7 @@ impl Reader<'_> {
             .map_err(|e| self.corrupt(format!("attribute {name} ({e})")))
     }
 
-    fn read<const D: usize>(&self) -> Result<(Checkpoint<D>, Schedule)> {
+    fn read<const D: usize>(&self) -> Result<(Checkpoint<'static, D>, Schedule)> {
         let n = self
             .file
             .dataset("id")
@@ -263,8 +260,8 @@ impl Reader<'_> {
             .map_err(|_| self.corrupt("the case text is not UTF-8"))?;
         let checkpoint = Checkpoint {
             case_toml,
-            particles,
-            list_positions: self.vectors("list_positions", n)?,
+            particles: Cow::Owned(particles),
+            list_positions: Cow::Owned(self.vectors("list_positions", n)?),
             skin: self.attr("skin")?,
             time: self.attr("time")?,
             dt: self.attr("dt")?,

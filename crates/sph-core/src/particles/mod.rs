@@ -20,6 +20,11 @@ use rayon::prelude::*;
 /// A position, velocity or force in `D` dimensions.
 pub type Vector<const D: usize> = SVector<f64, D>;
 
+/// The components of `v` in one flat slice (`x0, y0, x1, y1, …`), without a copy.
+pub fn components<const D: usize>(v: &[Vector<D>]) -> &[f64] {
+    bytemuck::cast_slice(v)
+}
+
 /// What a particle is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u8)]

@@ -8,17 +8,20 @@ use crate::error::{Result, SphError};
 use crate::motion::free::RECORD;
 use crate::neighbours::NeighbourList;
 use crate::particles::{Particles, Vector};
+use std::borrow::Cow;
 
 /// What a restart file says of sensor filters that do not match its case.
 const FILTERS: &str = "its sensor filters do not match its case";
 
-/// Everything of a [`Simulation`] that the next step depends on.
+/// Everything of a [`Simulation`] that the next step depends on. Taken from a running
+/// simulation it borrows the particles and list positions (a restart file is written
+/// from them without a copy); read from a file it owns them.
 #[derive(Debug, Clone)]
-pub struct Checkpoint<const D: usize> {
+pub struct Checkpoint<'a, const D: usize> {
     pub case_toml: String,
-    pub particles: Particles<D>,
+    pub particles: Cow<'a, Particles<D>>,
     /// Positions at the last neighbour-list build, in the current order.
-    pub list_positions: Vec<Vector<D>>,
+    pub list_positions: Cow<'a, [Vector<D>]>,
     pub skin: f64,
     pub time: f64,
     pub dt: f64,
@@ -34,15 +37,36 @@ pub struct Checkpoint<const D: usize> {
     pub absorbing_paddles: Vec<crate::waves::active_absorption::Record>,
 }
 
+impl<const D: usize> Checkpoint<'_, D> {
+    /// The checkpoint with its own copy of what it borrows, to outlive its simulation.
+    pub fn into_owned(self) -> Checkpoint<'static, D> {
+        Checkpoint {
+            particles: Cow::Owned(self.particles.into_owned()),
+            list_positions: Cow::Owned(self.list_positions.into_owned()),
+            case_toml: self.case_toml,
+            skin: self.skin,
+            time: self.time,
+            dt: self.dt,
+            counters: self.counters,
+            last_acceleration: self.last_acceleration,
+            budget: self.budget,
+            sensor_filters: self.sensor_filters,
+            free_bodies: self.free_bodies,
+            absorbing_paddles: self.absorbing_paddles,
+        }
+    }
+}
+
 impl<const D: usize> Simulation<D> {
-    /// The state the next step depends on, for a restart file (see [`crate::io::restart`]).
-    pub fn checkpoint(&self) -> Result<Checkpoint<D>> {
+    /// The state the next step depends on, for a restart file (see [`crate::io::restart`]);
+    /// it borrows the particles and the list positions.
+    pub fn checkpoint(&self) -> Result<Checkpoint<'_, D>> {
         let case_toml = toml::to_string(&self.case)
             .map_err(|e| SphError::output("restart", format!("case not serialisable: {e}")))?;
         Ok(Checkpoint {
             case_toml,
-            particles: self.state.particles.clone(),
-            list_positions: self.stepper.list.reference_positions().to_vec(),
+            particles: Cow::Borrowed(&self.state.particles),
+            list_positions: Cow::Borrowed(self.stepper.list.reference_positions()),
             skin: self.stepper.list.skin(),
             time: self.state.time,
             dt: self.state.dt,
@@ -58,8 +82,8 @@ impl<const D: usize> Simulation<D> {
 
     /// Continues a run from `checkpoint`, to `end` when given, else to the case's end
     /// time. The next step is the one the checkpointed run would have taken, bit for bit.
-    pub fn from_checkpoint(mut checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
-        let list_positions = std::mem::take(&mut checkpoint.list_positions);
+    pub fn from_checkpoint(mut checkpoint: Checkpoint<'_, D>, end: Option<f64>) -> Result<Self> {
+        let list_positions = std::mem::take(&mut checkpoint.list_positions).into_owned();
         let skin = checkpoint.skin;
         let mut sim = Self::checkpointed(checkpoint, end)?;
         let s = &mut sim.stepper;
@@ -75,7 +99,7 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// The state of `checkpoint` in a simulation of its case, without neighbour lists.
-    pub(super) fn checkpointed(checkpoint: Checkpoint<D>, end: Option<f64>) -> Result<Self> {
+    pub(super) fn checkpointed(checkpoint: Checkpoint<'_, D>, end: Option<f64>) -> Result<Self> {
         let mut case = Case::from_toml_str(&checkpoint.case_toml)?;
         if let Some(end) = end {
             if end.is_nan() || end <= checkpoint.time {
@@ -94,7 +118,7 @@ impl<const D: usize> Simulation<D> {
         if walls(&c.particles) != walls(&sim.state.particles) {
             return Err(corrupt("its wall particles do not match its case"));
         }
-        let mut particles = c.particles;
+        let mut particles = c.particles.into_owned();
         match (
             &sim.state.particles.shift_velocity,
             &particles.shift_velocity,

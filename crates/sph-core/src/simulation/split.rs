@@ -31,7 +31,7 @@ impl<const D: usize> Simulation<D> {
     /// [`Self::new_split`] splits a case: every process reads the whole checkpoint's
     /// particles and keeps its own, on any number of processes. Collective.
     pub fn from_checkpoint_split(
-        checkpoint: Checkpoint<D>,
+        checkpoint: Checkpoint<'_, D>,
         end: Option<f64>,
         comm: Arc<dyn Communicator>,
     ) -> Result<Self> {

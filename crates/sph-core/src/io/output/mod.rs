@@ -230,7 +230,7 @@ impl Output {
     /// replaces as `restart.prev.h5`. At every moment `restart.h5` is a complete file.
     pub fn write_restart<const D: usize>(
         &mut self,
-        checkpoint: &Checkpoint<D>,
+        checkpoint: &Checkpoint<'_, D>,
         schedule: &Schedule,
     ) -> Result<PathBuf> {
         self.manifest.claim(RESTART)?;

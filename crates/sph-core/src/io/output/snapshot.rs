@@ -15,6 +15,7 @@ use crate::particles::Particles;
 use crate::physics::free_surface::FreeSurface;
 use crate::simulation::Simulation;
 use hdf5::types::VarLenUnicode;
+use std::borrow::Cow;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -155,8 +156,12 @@ pub fn written_by_deltasph(path: &Path) -> bool {
 /// What every version of deltasph puts first in its `creator` marks.
 const CREATOR_MARK: &str = "deltasph";
 
-/// Positions and velocities padded to three components (what ParaView expects).
-fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Vec<f64> {
+/// Positions and velocities padded to three components (what ParaView expects); in 3D
+/// the vectors themselves, without a copy.
+fn padded<const D: usize>(v: &[crate::Vector<D>]) -> Cow<'_, [f64]> {
+    if D == 3 {
+        return Cow::Borrowed(crate::particles::components(v));
+    }
     v.iter()
         .flat_map(|x| (0..3).map(move |d| if d < D { x[d] } else { 0.0 }))
         .collect()
@@ -175,7 +180,7 @@ fn write_h5<const D: usize>(
         file.new_dataset::<f64>()
             .shape((n, 3))
             .create(name)?
-            .write_raw(&padded(v))
+            .write_raw(&*padded(v))
     };
     vector("position", &p.x)?;
     vector("velocity", &p.u)?;

@@ -3,7 +3,8 @@
 # release mode (the physics tests move thousands of particles; sph-cli is built once,
 # with its `mpi` feature, so that the runs split over processes under mpirun are checked
 # against serial ones by the same build), then builds and installs the Python module
-# and runs its pytest suite (with the sph-cli binary built for the Rust tests). Each stage's wall time is printed at its end.
+# and runs its pytest suite (with the sph-cli binary built for the Rust tests). Each
+# stage's wall time is printed at its end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS

@@ -15,7 +15,8 @@ t·sqrt(g/H)), the largest |ρ/ρ0 − 1| met, the pressure noise, the energy ch
 the wall time:
 
 - blew up: the stability guard stopped the run with its default limits (|ρ/ρ0 − 1| >
-  0.2, a speed above c0, or NaN), as a user running the case would see it;
+  0.2 for longer than an impact's transient, 10 h/c0; a density outside (0, 2ρ0), a
+  speed above c0, or NaN), as a user running the case would see it;
 - pressure noise: the RMS over the fluid of p_i minus the local linear least-squares
   fit of p around i (kernel weights within 2h), divided by ρ0 g H, averaged over snapshots every
   Δt* = 0.5 from t* = 3 (dam break: after the impact) or t* = 5 (hydrostatic). It sees

@@ -79,13 +79,36 @@ fn memory_line(case: &Case, processes: usize) -> String {
     )
 }
 
+/// Where c0 came from, as a line: given, or the rule's factor times the speed it
+/// assumed for the flow (`c0/factor`: the rule takes the larger of that speed and
+/// `sqrt(|g|H)`).
+fn sound_speed_basis(case: &Case, c0: f64) -> String {
+    let fluid = &case.fluid;
+    if fluid.sound_speed.is_some() {
+        return String::new();
+    }
+    let assumed = if fluid.max_velocity.is_some() {
+        "fluid.max_velocity"
+    } else {
+        "√(2|g|H) over the fluid's height H, or its initial speed"
+    };
+    format!(
+        "sound speed: c0 = {} × {:.4} m/s, the largest flow speed the rule assumed ({assumed}); \
+         a local impact faster than that shows as a density transient; fluid.max_velocity or \
+         fluid.sound_speed sets it\n",
+        fluid.sound_speed_factor,
+        c0 / fluid.sound_speed_factor
+    )
+}
+
 /// Sound speed, first step, steps to the end and a wall-time estimate, with a warning
 /// for a run of more than a day.
 fn cost_lines<const D: usize>(sim: &Simulation<D>) -> String {
     let cost = sim.cost();
     let mut text = format!(
-        "steps: c0 = {:.4} m/s, first Δt = {:.3e} s, about {:.3e} steps to t = {} s, \
+        "{}steps: c0 = {:.4} m/s, first Δt = {:.3e} s, about {:.3e} steps to t = {} s, \
          about {} on {} threads\n",
+        sound_speed_basis(sim.case(), cost.c0),
         cost.c0,
         cost.dt,
         cost.steps,

@@ -23,7 +23,7 @@ pub enum SphError {
         message: String,
     },
     /// The run blew up; the output written so far is kept.
-    #[error("unstable at t = {time:.6} s (step {step}): {reason} at particle {particle} (x = {position})")]
+    #[error("unstable at t = {time:.6} s (step {step}): {reason} at particle {particle}, x = {position}")]
     Unstable {
         time: f64,
         step: u64,

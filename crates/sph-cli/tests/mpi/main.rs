@@ -189,7 +189,7 @@ fn agrees_with_serial(name: &str, case_file: &str, dir: &Path, processes: &[usiz
 fn the_2d_dam_break_on_1_to_4_processes_is_the_serial_run() {
     let dir = scratch("mpi-dam-2d");
     let edits = [
-        ("end = 1.73", "end = 1.73\nmax_steps = 200"),
+        ("end = 4.95", "end = 4.95\nmax_steps = 200"),
         ("output_interval = 0.05", "output_interval = 0.0"),
     ];
     let file = case(&dir, "dam_break_2d.toml", &edits, "");
@@ -206,7 +206,7 @@ fn the_2d_dam_break_on_1_to_4_processes_is_the_serial_run() {
 fn the_2d_dam_break_with_shifting_on_3_processes_is_the_serial_run() {
     let dir = scratch("mpi-dam-shifting");
     let edits = [
-        ("end = 1.73", "end = 1.73\nmax_steps = 60"),
+        ("end = 4.95", "end = 4.95\nmax_steps = 60"),
         ("output_interval = 0.05", "output_interval = 0.0"),
         ("[scheme]", "[scheme]\nshifting = \"delta_plus\""),
     ];
@@ -219,7 +219,7 @@ fn the_3d_dam_break_on_2_to_4_processes_is_the_serial_run() {
     let dir = scratch("mpi-dam-3d");
     let edits = [
         ("spacing = 0.02", "spacing = 0.03"),
-        ("end = 0.6", "end = 0.6\nmax_steps = 200"),
+        ("end = 3.5", "end = 3.5\nmax_steps = 200"),
         ("output_interval = 0.05", "output_interval = 0.0"),
     ];
     let file = case(&dir, "dam_break_3d.toml", &edits, "");

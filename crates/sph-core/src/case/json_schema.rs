@@ -1,7 +1,7 @@
 //! The JSON Schema (draft 2020-12) of the case file, derived from the case types by
 //! schemars, so it cannot drift from what the parser accepts: TOML editors (Taplo,
 //! Even Better TOML) use it to complete keys and flag unknown ones as the user types.
-//! Value ranges and cross-key rules stay with [`super::validate`].
+//! Value ranges and cross-key rules stay with `super::validate`.
 
 use super::Case;
 use serde_json::Value;

@@ -1,6 +1,6 @@
-//! The case file: a TOML schema read with serde (unknown keys rejected, [`schema`]) and
-//! checked value by value ([`validate`]), so that every mistake is reported as one line
-//! naming the key, the value and what was expected ([`toml_errors`] for what serde and
+//! The case file: a TOML schema read with serde (unknown keys rejected, `schema`) and
+//! checked value by value (`validate`), so that every mistake is reported as one line
+//! naming the key, the value and what was expected (`toml_errors` for what serde and
 //! the TOML parser report). All quantities are SI.
 
 mod checks;

@@ -32,7 +32,7 @@ pub struct Case {
     /// Boxes filled with wall particles.
     #[serde(default)]
     pub wall: Vec<WallConfig>,
-    /// Solids of any shape: fluid regions, walls and cuts ([`super::shapes`]).
+    /// Solids of any shape: fluid regions, walls and cuts.
     #[serde(default)]
     pub shape: Vec<ShapeConfig>,
     #[serde(default)]
@@ -303,9 +303,17 @@ pub struct TimeConfig {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StabilityConfig {
-    /// Largest admissible |ρ/ρ0 - 1| before the run is stopped.
+    /// Largest admissible |ρ/ρ0 - 1| of a fluid particle for longer than an impact's
+    /// transient (`transient`); a density outside (0, 2ρ0) stops the run at once.
     #[serde(default = "default_max_density_variation")]
     pub max_density_variation: f64,
+    /// The longest time, in acoustic times of the kernel h/c0, that some fluid particle
+    /// may stay beyond `max_density_variation` before the run is stopped: an impact's
+    /// water hammer (a cavity closing, a jet landing) is relieved by sound within a few
+    /// h/c0 and is let through with a notice; a blow-up is not. 0 stops at the first
+    /// step beyond.
+    #[serde(default = "default_transient")]
+    pub transient: f64,
     /// Largest admissible Mach number |u|/c0 of a fluid particle. A weakly-compressible
     /// model is void long before Ma = 1; a particle that fast has been thrown out by a
     /// blow-up, and flying on it would stretch the neighbour grid without bound.
@@ -317,6 +325,7 @@ impl Default for StabilityConfig {
     fn default() -> Self {
         Self {
             max_density_variation: default_max_density_variation(),
+            transient: default_transient(),
             max_mach: default_max_mach(),
         }
     }
@@ -328,6 +337,10 @@ fn default_max_mach() -> f64 {
 
 fn default_max_density_variation() -> f64 {
     0.2
+}
+
+fn default_transient() -> f64 {
+    10.0
 }
 
 /// A damping zone along x: every fluid particle's velocity relaxes toward rest,

@@ -8,7 +8,7 @@
 //!   `p(x) = Σ_f p_f W(x - x_f) V_f / Σ_f W(x - x_f) V_f` (0 where no fluid is in reach).
 //! - Face sensors on the walls, averaged and low-pass filtered ([`sensors`]).
 //! - Wave gauges: the free surface's elevation on vertical lines ([`gauges`]).
-//! - The stability guard ([`guard`]) and the count of fluid inside walls ([`crossings`]).
+//! - The stability guard (`guard`) and the count of fluid inside walls (`crossings`).
 
 pub mod budget;
 mod crossings;
@@ -18,7 +18,7 @@ pub mod sensors;
 pub mod series;
 
 pub use crossings::wall_crossings;
-pub use guard::find_instability;
+pub use guard::{densest_excursion, find_instability, DensityWatch, Holder, Verdict};
 
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;

@@ -1,7 +1,7 @@
 //! Analytic initial fields laid over the fluid blocks: the Taylor-Green vortex, the
 //! elliptic drop, the rotating square patch and the linear standing wave, and the
 //! check that a field fits the fluid it fills. Fields from expressions are in
-//! [`super::expressions`].
+//! `super::expressions`.
 
 use crate::case::{Case, InitialField};
 use crate::error::{Result, SphError};

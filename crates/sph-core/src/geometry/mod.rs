@@ -4,8 +4,8 @@
 //!
 //! What only the built particles can tell is checked here: fluid inside walls or in
 //! two blocks at once, an initial field that does not fit the fluid it fills, probes
-//! that no fluid can reach, particles outside the domain ([`checks`],
-//! [`initial_field`]); the lattice of blocks and walls is [`lattice`].
+//! that no fluid can reach, particles outside the domain (`checks`,
+//! [`initial_field`]); the lattice of blocks and walls is `lattice`.
 
 mod checks;
 mod expressions;

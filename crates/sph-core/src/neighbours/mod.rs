@@ -1,4 +1,4 @@
-//! Neighbour search: a cell-linked list ([`grid`]) turned into per-particle Verlet
+//! Neighbour search: a cell-linked list (`grid`) turned into per-particle Verlet
 //! lists, culled at every step to the pairs the step can use.
 //!
 //! - **Build.** Particles are binned into cubic cells of side `>= R + s` (R the kernel

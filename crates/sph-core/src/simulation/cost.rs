@@ -30,7 +30,7 @@ pub struct Cost {
 
 impl<const D: usize> Simulation<D> {
     /// The sound speed, the first step, the steps to `time.end` and a wall-time
-    /// estimate on this machine's threads (see [`PAIRS_PER_CORE_SECOND`]).
+    /// estimate on this machine's threads (see `PAIRS_PER_CORE_SECOND`).
     pub fn cost(&self) -> Cost {
         let control = self.time_step_control();
         let gravity = self.physics().gravity.norm();

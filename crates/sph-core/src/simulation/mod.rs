@@ -1,8 +1,8 @@
 //! A running simulation, the facade the CLI and Python drive: a [`State`] (particles
 //! and clock) advanced by a [`Stepper`] (model, integrator, lists, step control, open
 //! boundaries, body force, process split), watched by the case's time-series
-//! observers ([`crate::diagnostics::series`]). [`checkpoint`] captures and restores
-//! the state a step depends on; [`split`] runs it over several processes.
+//! observers ([`crate::diagnostics::series`]). `checkpoint` captures and restores
+//! the state a step depends on; `split` runs it over several processes.
 
 mod checkpoint;
 mod cost;

@@ -4,8 +4,9 @@
 
 use super::state::State;
 use crate::boundary::open::OpenBoundaries;
-use crate::case::{Case, IntegratorChoice, ShiftingChoice, StabilityConfig};
+use crate::case::{Case, IntegratorChoice, ShiftingChoice};
 use crate::diagnostics::{self, budget::EnergyBudget};
+use crate::diagnostics::{DensityWatch, Holder, Verdict};
 use crate::distributed::Ranks;
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
@@ -58,7 +59,10 @@ pub struct Stepper<const D: usize> {
     pub(super) ranks: Option<Ranks<D>>,
     dx: f64,
     tensile_control: bool,
-    guard: StabilityConfig,
+    /// `stability.max_mach`.
+    max_mach: f64,
+    /// The density guard, which lets an impact's transient through.
+    density_watch: DensityWatch,
     /// Whether the domain is the default box around the initial particles (no
     /// `[domain]` table): the first fluid it removes is reported in `notices`.
     default_domain: bool,
@@ -87,6 +91,12 @@ impl<const D: usize> Stepper<D> {
         } else {
             0.0
         };
+        let stability = &case.stability;
+        let density_watch = DensityWatch::new(
+            stability.max_density_variation,
+            stability.transient,
+            case.h() / model.physics().eos.c0,
+        );
         Self {
             policy: ListPolicy::new(model.support_radius(), &domain, shift_cap),
             model,
@@ -101,7 +111,8 @@ impl<const D: usize> Stepper<D> {
             ranks: None,
             dx: case.dx(),
             tensile_control: case.scheme.tensile_control,
-            guard: case.stability.clone(),
+            max_mach: stability.max_mach,
+            density_watch,
             default_domain: case.domain.is_none(),
             notices: Vec::new(),
         }
@@ -364,39 +375,48 @@ impl<const D: usize> Stepper<D> {
         state.counters.removed_mass += mass;
     }
 
-    /// The stability guard (see [`diagnostics::find_instability`]); in a split run
-    /// every process stops with the report of the first process that found one.
-    fn check_stability(&self, state: &State<D>) -> Result<()> {
+    /// The stability guard (see [`diagnostics::guard`]); in a split run every process
+    /// stops with the report of the first process that found a blow-up.
+    fn check_stability(&mut self, state: &State<D>) -> Result<()> {
         let eos = self.model.physics().eos;
-        let max_speed = self.guard.max_mach * eos.c0;
-        let limit = self.guard.max_density_variation;
         let p = &state.particles;
-        let found = diagnostics::find_instability(p, eos.rho0, limit, max_speed);
-        let unstable = |particle: u32, position: String, reason: String| SphError::Unstable {
+        let unstable = |h: Holder, reason: String| SphError::Unstable {
             time: state.time,
             step: state.counters.steps,
-            particle,
-            position,
+            particle: h.particle,
+            position: h.position,
             reason,
         };
-        let Some(ranks) = &self.ranks else {
-            return found.map_or(Ok(()), |(i, reason)| {
-                Err(unstable(
-                    p.id[i],
-                    format!("{:?}", p.x[i].as_slice()),
-                    reason,
-                ))
-            });
+        let found = diagnostics::find_instability(p, eos.rho0, self.max_mach * eos.c0);
+        let found = found.map(|(i, reason)| (holder(p, i, eos.rho0), reason));
+        if let Some((h, reason)) = first_found(self.ranks.as_ref(), found) {
+            return Err(unstable(h, reason));
+        }
+        let variation = diagnostics::max_density_variation(p, eos.rho0);
+        let variation = self.ranks.as_ref().map_or(variation, |r| r.max(variation));
+        let ranks = self.ranks.as_ref();
+        let held_by = || {
+            let local = diagnostics::densest_excursion(p, eos.rho0)
+                .filter(|&(_, v)| v.abs() == variation)
+                .map(|(i, _)| (holder(p, i, eos.rho0), String::new()));
+            let nowhere = Holder {
+                particle: u32::MAX,
+                position: "(not found)".into(),
+                variation,
+            };
+            first_found(ranks, local).map_or(nowhere, |(h, _)| h)
         };
-        let text =
-            found.map(|(i, reason)| format!("{}\t{:?}\t{reason}", p.id[i], p.x[i].as_slice()));
-        let Some(text) = ranks.first_text(text) else {
-            return Ok(());
-        };
-        let mut fields = text.splitn(3, '\t');
-        let mut next = || fields.next().unwrap_or_default().to_string();
-        let particle = next().parse().unwrap_or(u32::MAX);
-        Err(unstable(particle, next(), next()))
+        match self.density_watch.observe(state.time, variation, held_by) {
+            Verdict::Calm => Ok(()),
+            Verdict::Transient(notice) => {
+                // every process of a split run sees the same transient: one tells it
+                if self.ranks.as_ref().is_none_or(|r| r.rank() == 0) {
+                    self.notices.push(notice);
+                }
+                Ok(())
+            }
+            Verdict::Unstable(h, reason) => Err(unstable(h, reason)),
+        }
     }
 }
 
@@ -408,4 +428,40 @@ fn wall_acceleration<const D: usize>(p: &Particles<D>) -> f64 {
             .reduce(|| 0.0, f64::max)
             .sqrt()
     })
+}
+
+/// Particle `i`'s id, position and density variation.
+fn holder<const D: usize>(p: &Particles<D>, i: usize, rho0: f64) -> Holder {
+    Holder {
+        particle: p.id[i],
+        position: crate::domain::point_text(&p.x[i]),
+        variation: p.rho[i] / rho0 - 1.0,
+    }
+}
+
+/// The first process's finding, on every process of a split run (this process's
+/// otherwise).
+fn first_found<const D: usize>(
+    ranks: Option<&Ranks<D>>,
+    found: Option<(Holder, String)>,
+) -> Option<(Holder, String)> {
+    let Some(ranks) = ranks else {
+        return found;
+    };
+    let text = found.map(|(h, reason)| {
+        format!(
+            "{}\t{}\t{:e}\t{reason}",
+            h.particle, h.position, h.variation
+        )
+    });
+    let text = ranks.first_text(text)?;
+    let mut fields = text.splitn(4, '\t');
+    let mut next = || fields.next().unwrap_or_default().to_string();
+    let (particle, position, variation) = (next(), next(), next());
+    let holder = Holder {
+        particle: particle.parse().unwrap_or(u32::MAX),
+        position,
+        variation: variation.parse().unwrap_or(f64::NAN),
+    };
+    Some((holder, next()))
 }

@@ -40,10 +40,37 @@ pub fn example(name: &str) -> String {
         .to_string()
 }
 
-pub fn scratch(name: &str) -> PathBuf {
+/// A scratch folder for one test, removed when the test passes (kept, with its path
+/// printed, when it fails, for a look at what the run wrote).
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("scratch folder kept: {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+pub fn scratch(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("sph-cli-test-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    dir
+    Scratch(dir)
 }
 
 /// A small, fast variant of the 2D dam break written to `dir/case.toml`.
@@ -52,7 +79,7 @@ pub fn small_case(dir: &Path, extra: &str) -> String {
     let text = std::fs::read_to_string(example("dam_break_2d.toml"))
         .unwrap()
         .replace("spacing = 0.012 ", "spacing = 0.05 ")
-        .replace("end = 1.73", "end = 0.05")
+        .replace("end = 4.95", "end = 0.05")
         .replace("output_interval = 0.05", "output_interval = 0.02")
         + extra;
     let path = dir.join("case.toml");

@@ -6,7 +6,7 @@
 //! the fluid next to the buffer sees a full kernel support), but whose state is set
 //! rather than integrated:
 //! - **inlet**: velocity prescribed, `u = U f(s) min(t/T, 1)` (profile f, uniform or
-//!   Poiseuille's across plates or a rectangular duct, [`profile`]; ramp T, held
+//!   Poiseuille's across plates or a rectangular duct, `profile`; ramp T, held
 //!   over each step); density extrapolated from the fluid at the point mirrored across
 //!   the buffer's inner face, `ρ_b = Σ_j ρ_j W(x_m - x_j) V_j / Σ_j W(x_m - x_j) V_j`
 //!   over the fluid outside the buffers (zero normal gradient);
@@ -23,7 +23,7 @@
 //! with a rebuild; the default width, R plus a spacing, keeps the fluid's support in
 //! the buffer full meanwhile.
 //!
-//! The start is checked ([`checks`]): an inlet holds fluid and no wall, an outlet can
+//! The start is checked (`checks`): an inlet holds fluid and no wall, an outlet can
 //! be reached by the fluid, and one that keeps its particles' velocity does not start
 //! at rest.
 

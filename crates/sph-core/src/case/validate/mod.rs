@@ -159,6 +159,7 @@ impl Case {
             "stability.max_density_variation",
             self.stability.max_density_variation,
         )?;
+        non_negative("stability.transient", self.stability.transient)?;
         positive("stability.max_mach", self.stability.max_mach)?;
         if let Some(i) = self.output.restart_interval {
             positive("output.restart_interval", i)?;

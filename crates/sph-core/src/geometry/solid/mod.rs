@@ -5,8 +5,8 @@
 //! oriented polyline or triangle mesh, whose pseudo-normals tell inside from outside.
 //!
 //! What makes a surface unusable is refused with a one-line error naming the key:
-//! an open, degenerate or self-intersecting polygon ([`polygon`], [`outline`]), an STL
-//! that is not closed or faces inwards ([`mesh`]).
+//! an open, degenerate or self-intersecting polygon (`polygon`, `outline`), an STL
+//! that is not closed or faces inwards (`mesh`).
 
 mod dxf;
 mod mesh;

@@ -7,7 +7,7 @@
 //! element). Without the connectivity, ParaView's Xdmf3 reader (its default for
 //! `.xmf`) builds the points but no cells, and its default Surface view is empty.
 //! Optional fields: `free_surface`, `normal`, `lambda`, `shifting_velocity`.
-//! Attributes: `time`, `step`, `dimension`, `creator` ("deltasph <version>").
+//! Attributes: `time`, `step`, `dimension`, `creator` (`"deltasph <version>"`).
 
 use super::atomic;
 use crate::error::{Result, SphError};

@@ -29,8 +29,8 @@ the wall time:
 Writes docs/stability/{results.csv, README.md, <case>_<map>_<variant>.png}. Runs in
 parallel processes, one solver thread each.
 
-    python3 benches/stability_map.py              # the full grids (about 10 minutes on 2 cores)
-    python3 benches/stability_map.py --quick      # coarser grids (about 3 minutes)
+    python3 benches/stability_map.py              # the full grids (about 4 minutes on 2 cores)
+    python3 benches/stability_map.py --quick      # coarser grids (about 1 minute)
 """
 
 import argparse

@@ -392,8 +392,7 @@ impl<const D: usize> Stepper<D> {
         if let Some((h, reason)) = first_found(self.ranks.as_ref(), found) {
             return Err(unstable(h, reason));
         }
-        let variation = diagnostics::max_density_variation(p, eos.rho0);
-        let variation = self.ranks.as_ref().map_or(variation, |r| r.max(variation));
+        let variation = self.global_max(diagnostics::max_density_variation(p, eos.rho0));
         let ranks = self.ranks.as_ref();
         let held_by = || {
             let local = diagnostics::densest_excursion(p, eos.rho0)

@@ -1,6 +1,7 @@
 //! Criterion benchmarks: kernel evaluation, neighbour-list build and one RK4 step of
-//! the 2D dam break (δ-SPH, Wendland C2, h/Δx = 1.33) at about 10k and 100k particles.
-//! Run with `cargo bench --bench core`.
+//! the 2D dam break (δ-SPH, Wendland C2, h/Δx = 1.33) at about 10k and 100k particles,
+//! and the writing of a snapshot of the 2D and 3D dam-break examples after their first
+//! impact at each deflate level (sizes printed). Run with `cargo bench --bench core`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use deltasph_suite::example_case;
@@ -80,5 +81,53 @@ fn rk4_step(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, kernels, neighbours, rk4_step);
+/// One snapshot of each dam-break example at t = 0.6 s (its flow past the first impact,
+/// no longer a lattice) written at deflate levels 0 (none) to 9: the time here, the
+/// file size on stderr.
+fn snapshot_write(c: &mut Criterion) {
+    let mut g = c.benchmark_group("snapshot_write");
+    g.sample_size(10);
+    let file = std::env::temp_dir().join(format!("deltasph-bench-{}.h5", std::process::id()));
+    for example in ["dam_break_2d.toml", "dam_break_3d.toml"] {
+        let case = example_case(example, &["time.end = 0.6"]);
+        if case.dimension == 2 {
+            bench_levels::<2>(&mut g, example, case, &file);
+        } else {
+            bench_levels::<3>(&mut g, example, case, &file);
+        }
+    }
+    let _ = std::fs::remove_file(&file);
+    g.finish();
+}
+
+fn bench_levels<const D: usize>(
+    g: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    example: &str,
+    case: sph_core::case::Case,
+    file: &std::path::Path,
+) {
+    use sph_core::io::output::{write_snapshot, Compression};
+    let mut sim = Simulation::<D>::new(case).unwrap();
+    while sim.time() < 0.6 {
+        sim.step().unwrap();
+    }
+    let p = sim.particles();
+    let stamp = (sim.time(), sim.counters().steps);
+    for level in [0, 1, 2, 4, 6, 9] {
+        let c = Compression::deflate(level);
+        write_snapshot(file, p, &Default::default(), stamp, c).unwrap();
+        let bytes = std::fs::metadata(file).unwrap().len();
+        eprintln!(
+            "{example} level {level}: {} particles, {bytes} bytes ({:.1} B/particle)",
+            p.len(),
+            bytes as f64 / p.len() as f64
+        );
+        g.throughput(Throughput::Elements(p.len() as u64));
+        g.bench_function(format!("{example} level {level}"), |b| {
+            b.iter(|| write_snapshot(file, p, &Default::default(), stamp, c).unwrap())
+        });
+    }
+}
+
+criterion_group!(benches, kernels, neighbours, rk4_step, snapshot_write);
 criterion_main!(benches);

@@ -122,7 +122,9 @@ pub(crate) fn assert_restarts_bit_for_bit(
         snapshots: 0,
         initial_energy: 0.0,
     };
-    sph_core::io::restart::write_file(&path, &whole.checkpoint().unwrap(), &schedule).unwrap();
+    let packing = sph_core::io::output::Compression::default();
+    sph_core::io::restart::write_file(&path, &whole.checkpoint().unwrap(), &schedule, packing)
+        .unwrap();
     let (checkpoint, _) = sph_core::io::restart::read::<2>(&path).unwrap();
     std::fs::remove_file(&path).unwrap();
     let mut resumed = Simulation::<2>::from_checkpoint(checkpoint, None).unwrap();

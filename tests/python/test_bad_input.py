@@ -61,6 +61,9 @@ def test_same_message_as_toml(tmp_path):
         ("fluid__gravity", [0.0, -9.81, 0.0], "fluid.gravity"),
         ("particles__h_over_dx", float("nan"), "particles.h_over_dx = NaN"),
         ("time__end", 1j, "time.end = 1j: expected a number"),
+        ("output__compression", 10,
+         "output.compression = 10: expected a deflate level from 0 (none) to 9"),
+        ("output__compression", -1, "output.compression = -1"),
     ],
 )
 def test_bad_values(key, value, fragment):

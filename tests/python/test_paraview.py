@@ -52,6 +52,8 @@ def check_against_snapshots(seen, snapshots, dim):
     assert len(seen["steps"]) == len(snapshots)
     for step, path in zip(seen["steps"], snapshots):
         with h5py.File(path) as f:
+            # compressed as every snapshot is by default: ParaView's reader inflates them
+            assert all(d.compression == "gzip" and d.shuffle for d in f.values()), path
             n = f["id"].shape[0]
             assert step["points"] == step["cells"] == n, (path, step["points"], step["cells"])
             for name in FIELDS:

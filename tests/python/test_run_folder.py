@@ -22,12 +22,13 @@ from test_simulation import cli_binary
 DRY = [3.2196, 1.7]
 
 
-def case_file(tmp_path, end=0.1):
-    """The 2D dam break at H/Δx = 20 to `end`, snapshots every 0.025 s, as a TOML file."""
+def case_file(tmp_path, end=0.1, name="case", **overrides):
+    """The 2D dam break at H/Δx = 20 to `end`, snapshots every 0.025 s, as a TOML file
+    (`overrides` as for `example`)."""
     config = example("dam_break_2d", particles__spacing=0.03, time__end=end,
-                     time__output_interval=0.025)
+                     time__output_interval=0.025, **overrides)
     config["diagnostics"]["probes"] = [[0.6, 0.015], DRY]
-    path = tmp_path / "case.toml"
+    path = tmp_path / f"{name}.toml"
     path.write_text(ds.Simulation(config).to_toml())
     return path
 
@@ -71,6 +72,33 @@ def test_from_restart_continues_the_folder_bit_for_bit(tmp_path):
     assert sim.time == pytest.approx(0.05, abs=1e-12)
     sim.run(until=0.1, out=tmp_path / "py")
     assert_same_folders(tmp_path / "cli", tmp_path / "py")
+
+
+def folder_bytes(folder, pattern):
+    return sum(f.stat().st_size for f in folder.glob(pattern))
+
+
+def test_snapshots_and_restarts_are_compressed_unless_the_case_says_0(tmp_path):
+    """Deflate level 2 by default, none with ``output.compression = 0``: the same data
+    read back by h5py and ``ds.load``, in 59% of the snapshot bytes and 66% of the
+    restart file's here (measured; 2D dam break at H/Δx = 20 to t = 0.1)."""
+    case = case_file(tmp_path)
+    plain = case_file(tmp_path, name="plain", output__compression=0)
+    cli("run", case, "--out", tmp_path / "packed")
+    cli("run", plain, "--out", tmp_path / "plain")
+    packed, unpacked = tmp_path / "packed", tmp_path / "plain"
+    for folder, filters in ((packed, ("gzip", 2, True)), (unpacked, (None, None, False))):
+        for f in [*folder.glob("particles_*.h5"), folder / "restart.h5"]:
+            with h5py.File(f) as h5:
+                for name, d in h5.items():
+                    assert (d.compression, d.compression_opts, d.shuffle) == filters, (f, name)
+    for a, b in zip(ds.load(packed), ds.load(unpacked)):
+        for field in ("position", "velocity", "density", "pressure", "kind", "id"):
+            np.testing.assert_array_equal(a[field], b[field], err_msg=field)
+    ratio = folder_bytes(packed, "particles_*.h5") / folder_bytes(unpacked, "particles_*.h5")
+    assert ratio < 0.7, ratio
+    ratio = folder_bytes(packed, "restart.h5") / folder_bytes(unpacked, "restart.h5")
+    assert ratio < 0.8, ratio
 
 
 def test_run_folders_keep_what_users_own(tmp_path):

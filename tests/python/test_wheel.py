@@ -30,6 +30,9 @@ def test_one_abi3_wheel_for_python_3_9_on(wheel):
     assert "Requires-Python: >=3.9" in meta
     assert re.search(r"Requires-Dist: tomli.*python_(full_)?version *< *['\"]3\.11", meta), meta
     assert re.search(r"^deltasph *= *deltasph\._cli:run$", entry, re.M), entry
+    # `pip install "deltasph[plot]"` brings what `deltasph plot` draws with
+    assert "Provides-Extra: plot" in meta, meta
+    assert re.search(r"Requires-Dist: matplotlib.*extra *== *['\"]plot['\"]", meta), meta
     assert any(n.startswith("deltasph/_core") and n.endswith(".so") for n in names)
 
 
@@ -47,6 +50,9 @@ def test_the_extension_links_no_libhdf5(fresh_env):
     ext = next((fresh_env / "lib").glob("python3*/site-packages/deltasph/_core*.so"))
     libraries = subprocess.run(["ldd", ext], capture_output=True, text=True, check=True).stdout
     assert "libhdf5" not in libraries, libraries
+    # zlib (the snapshots' deflate) is linked in too: libz is not among the libraries a
+    # manylinux wheel may expect on the system
+    assert "libz" not in libraries, libraries
     assert "not found" not in libraries, libraries
 
 
@@ -68,3 +74,8 @@ print(len(run), run[-1].time)
                             EXAMPLES / "dam_break_2d.toml"], capture_output=True, text=True)
     assert check.returncode == 0, check.stderr
     assert "valid 2D case 'dam_break_2d'" in check.stdout
+    # without the plot extra, `deltasph plot` names it in one line
+    plot = subprocess.run([fresh_env / "bin" / "deltasph", "plot", tmp_path / "run"],
+                          capture_output=True, text=True)
+    assert plot.returncode == 2 and 'pip install "deltasph[plot]"' in plot.stderr, plot.stderr
+    assert plot.stderr.count("\n") == 1, plot.stderr

@@ -90,7 +90,7 @@ fn sound_speed_basis(case: &Case, c0: f64) -> String {
     let assumed = if fluid.max_velocity.is_some() {
         "fluid.max_velocity"
     } else {
-        "√(2|g|H) over the fluid's height H, or its initial speed"
+        "√(2|g|H) over the fluid's height H, its initial speed, or an inlet's speed"
     };
     format!(
         "sound speed: c0 = {} × {:.4} m/s, the largest flow speed the rule assumed ({assumed}); \

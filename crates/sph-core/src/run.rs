@@ -101,9 +101,12 @@ impl Run {
     /// A run continued from a restart file's simulation and schedule, in its folder.
     pub fn resume<const D: usize>(
         sim: &Simulation<D>,
-        output: Option<Output>,
+        mut output: Option<Output>,
         schedule: Schedule,
     ) -> Self {
+        if let Some(o) = output.as_mut() {
+            o.set_compression(sim.case().output.compression());
+        }
         Self {
             since: sim.counters(),
             last_row: sim.time(),

@@ -124,6 +124,7 @@ const DAM_BREAK_KEYS: &[&str] = &[
     "diagnostics.sensors.0.size",
     "diagnostics.sensors.0.cutoff",
     "output.restart_interval",
+    "output.compression",
     "shape.0.role",
     "shape.0.polygon",
     "shape.0.polygon.1",

@@ -239,3 +239,15 @@ fn check_refuses_unreachable_probes_and_thin_walls() {
         assert!(err.starts_with(expected), "{err}");
     }
 }
+
+/// The impinging jet's inlet: at the domain's top, y = 0.325 m, its default width (the
+/// support R = 2h = 0.02 m, four spacings, plus one) puts the inner face, where the jet
+/// leaves the nozzle, at y = 0.3 m.
+#[test]
+fn check_reports_where_an_inlets_inner_face_lies() {
+    let line = check_line("validation/impinging_jet.toml", "  open_boundary[0]");
+    assert!(
+        line.contains("inlet  at y hi = 0.325: 0.025 m wide, inner face at y = 0.3, 100 particles"),
+        "{line}"
+    );
+}

@@ -76,7 +76,9 @@ pub struct OpenBoundaryConfig {
     #[serde(default)]
     pub section: Option<Vec<[f64; 2]>>,
     /// Buffer width \[m\], at least the kernel support R. Default: R rounded up to whole
-    /// spacings, plus one (the outermost layer is refilled at the lists' rebuilds).
+    /// spacings, plus one (the outermost layer is refilled at the lists' rebuilds), so
+    /// that it follows `h_over_dx`: set it where the inner face must stay put (a
+    /// nozzle's stand-off); `sph-cli check` prints where each inner face lies.
     #[serde(default)]
     pub width: Option<f64>,
     /// Inflow velocity [m/s] (inlets only), pointing into the domain.

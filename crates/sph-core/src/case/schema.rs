@@ -396,6 +396,21 @@ pub struct OutputConfig {
     /// is still written at the end, on a stop signal and on a failed write).
     #[serde(default)]
     pub restart_interval: Option<f64>,
+    /// The deflate level of the snapshots and restart files (with the shuffle filter;
+    /// ParaView, VisIt and h5py read them as they are): 1 fastest to 9 smallest, 0 for
+    /// none. Default: 2, measured on the dam-break examples: snapshots 43% (2D) and 70%
+    /// (3D) smaller, restart files 37% and 67%, run time unchanged within its noise;
+    /// levels 4–9 shrink the files by under 2% more and write up to 7× slower.
+    #[serde(default)]
+    pub compression: Option<u8>,
+}
+
+impl OutputConfig {
+    /// How the run's HDF5 files are stored.
+    pub fn compression(&self) -> crate::io::output::Compression {
+        self.compression
+            .map_or_else(Default::default, crate::io::output::Compression::deflate)
+    }
 }
 
 impl Case {

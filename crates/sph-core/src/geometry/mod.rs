@@ -252,8 +252,8 @@ fn fluid_points<const D: usize>(
 }
 
 /// c0 given, or `factor · max(U, sqrt(Δp/ρ0))` with H the fluid height along gravity,
-/// `U = max(|u0|, sqrt(2|g|H))` unless set, `Δp = ρ0|g|H`; `field_speed` is the
-/// largest speed of an expression field.
+/// `U = max(|u0|, |u_in|, sqrt(2|g|H))` unless set (`u_in` the inlets' speeds),
+/// `Δp = ρ0|g|H`; `field_speed` is the largest speed of an expression field.
 fn sound_speed<const D: usize>(
     case: &Case,
     regions: &[FluidRegion<D>],
@@ -279,7 +279,7 @@ fn sound_speed<const D: usize>(
     if let Some(InitialField::TaylorGreen { amplitude, .. }) = &case.initial {
         u0 = u0.max(amplitude.abs());
     }
-    u0 = u0.max(field_speed);
+    u0 = u0.max(field_speed).max(inflow_speed(case));
     let u_max = case
         .fluid
         .max_velocity
@@ -297,9 +297,19 @@ fn sound_speed<const D: usize>(
         Err(SphError::invalid(
             "fluid.sound_speed",
             "(missing)",
-            "a sound speed: with no gravity and no initial velocity it cannot be derived",
+            "a sound speed, or fluid.max_velocity (the flow's largest speed, which the rule \
+             c0 = sound_speed_factor × U takes): with no gravity, no initial velocity and no \
+             inflow it cannot be derived",
         ))
     }
+}
+
+/// The largest inflow speed of the case's inlets (0 without).
+fn inflow_speed(case: &Case) -> f64 {
+    (case.open_boundary.iter())
+        .filter_map(|b| b.velocity.as_ref())
+        .map(|v| v.iter().map(|c| c * c).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
 }
 
 /// The domain of the case: its `[domain]` box, or the particles' bounding box widened
@@ -377,6 +387,31 @@ mod tests {
             Ok(_) => panic!("built: {text}"),
             Err(e) => e.to_string(),
         }
+    }
+
+    #[test]
+    fn the_sound_speed_rule_takes_the_inflow_speed_or_names_the_key_that_sets_it() {
+        // a channel of fluid at rest, no gravity, fed at 2 m/s: c0 = 10 × 2
+        let channel = |inlet: &str| {
+            format!(
+                "dimension = 2\n[particles]\nspacing = 0.05\n[fluid]\ndensity = 1000.0\n\
+                 [[fluid_block]]\nlo = [0.0, 0.0]\nhi = [1.0, 0.8]\nhydrostatic = false\n\
+                 [domain]\nlo = [0.0, 0.0]\nhi = [1.0, 0.8]\nperiodic = [false, true]\n{inlet}\
+                 [[open_boundary]]\ntype = \"outlet\"\naxis = 0\nside = \"hi\"\n\
+                 [time]\nend = 0.1\n"
+            )
+        };
+        let inlet = "[[open_boundary]]\ntype = \"inlet\"\naxis = 0\nside = \"lo\"\n\
+                     velocity = [2.0, 0.0]\n";
+        let setup = build::<2>(&Case::from_toml_str(&channel(inlet)).unwrap()).unwrap();
+        assert_eq!(setup.eos.c0, 20.0);
+        let e = build_error(&channel(""));
+        assert!(
+            e.starts_with(
+                "fluid.sound_speed = (missing): expected a sound speed, or fluid.max_velocity"
+            ),
+            "{e}"
+        );
     }
 
     #[test]

@@ -15,6 +15,7 @@
 //! value it relies on: a damaged or foreign file is an error naming what is wrong.
 
 use crate::error::{Result, SphError};
+use crate::io::output::compression::Compression;
 use crate::particles::{Kind, Particles, Vector};
 use crate::simulation::{Checkpoint, Counters, EnergyBudget};
 use std::borrow::Cow;
@@ -41,22 +42,25 @@ pub fn write_file<const D: usize>(
     path: &Path,
     checkpoint: &Checkpoint<'_, D>,
     schedule: &Schedule,
+    compression: Compression,
 ) -> Result<()> {
-    write_h5(path, checkpoint, schedule).map_err(|e| SphError::output(path, e))?;
+    write_h5(path, checkpoint, schedule, compression).map_err(|e| SphError::output(path, e))?;
     std::fs::File::open(path)
         .and_then(|f| f.sync_all())
         .map_err(|e| SphError::output(path, e))
 }
 
-fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<'_, D>, s: &Schedule) -> hdf5::Result<()> {
+fn write_h5<const D: usize>(
+    path: &Path,
+    c: &Checkpoint<'_, D>,
+    s: &Schedule,
+    packing: Compression,
+) -> hdf5::Result<()> {
     let file = hdf5::File::create(path)?;
     let p = &c.particles;
     let n = p.len();
     let vector = |name: &str, v: &[Vector<D>]| {
-        file.new_dataset::<f64>()
-            .shape((n, D))
-            .create(name)?
-            .write_raw(crate::particles::components(v))
+        (packing.create::<f64>(&file, name, n, D)?).write_raw(crate::particles::components(v))
     };
     vector("position", &p.x)?;
     vector("velocity", &p.u)?;
@@ -65,14 +69,9 @@ fn write_h5<const D: usize>(path: &Path, c: &Checkpoint<'_, D>, s: &Schedule) ->
     if let Some(v) = &c.particles.shift_velocity {
         vector("shifting_velocity", v)?;
     }
-    crate::io::output::snapshot::write_scalars(&file, p)?;
-    file.new_dataset::<f64>()
-        .shape(n)
-        .create("mass")?
-        .write_raw(&p.mass)?;
-    file.new_dataset::<u8>()
-        .shape(c.case_toml.len())
-        .create("case_toml")?
+    crate::io::output::snapshot::write_scalars(&file, p, packing)?;
+    (packing.create::<f64>(&file, "mass", n, 1)?).write_raw(&p.mass)?;
+    (packing.create::<u8>(&file, "case_toml", c.case_toml.len(), 1)?)
         .write_raw(c.case_toml.as_bytes())?;
     let scalars = [
         ("time", c.time),

@@ -72,7 +72,9 @@ def _pyplot():
             matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError as e:
-        raise ImportError("deltasph.plot needs matplotlib: pip install matplotlib") from e
+        raise ImportError(
+            "deltasph.plot needs matplotlib: pip install \"deltasph[plot]\" (or matplotlib)"
+        ) from e
     return plt
 
 

@@ -190,8 +190,8 @@ impl<const D: usize> OpenBoundaries<D> {
         self.buffer_of(p, i).is_some()
     }
 
-    /// One line per buffer: its kind, where it is, its width and how many particles
-    /// it holds now.
+    /// One line per buffer: its kind, where it is, its width, where its inner face (the
+    /// fluid's side) lies, and how many particles it holds now.
     pub fn describe(&self, p: &Particles<D>) -> String {
         let axes = ["x", "y", "z"];
         let mut text = String::new();
@@ -204,9 +204,13 @@ impl<const D: usize> OpenBoundaries<D> {
                 Flow::Outflow { .. } => "outlet",
             };
             let side = if b.inward > 0.0 { "lo" } else { "hi" };
+            let axis = axes[b.axis];
             text.push_str(&format!(
-                "  open_boundary[{k}]         {kind:<6} at {} {side} = {}: {} m wide, {count} particles\n",
-                axes[b.axis], b.end, b.width
+                "  open_boundary[{k}]         {kind:<6} at {axis} {side} = {}: {} m wide, inner face \
+                 at {axis} = {}, {count} particles\n",
+                b.end,
+                b.width,
+                b.end + b.inward * b.width
             ));
         }
         text

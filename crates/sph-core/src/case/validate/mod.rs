@@ -164,6 +164,13 @@ impl Case {
         if let Some(i) = self.output.restart_interval {
             positive("output.restart_interval", i)?;
         }
+        if let Some(level) = self.output.compression.filter(|&l| l > 9) {
+            return Err(SphError::invalid(
+                "output.compression",
+                level,
+                "a deflate level from 0 (none) to 9",
+            ));
+        }
         Ok(())
     }
 

@@ -118,6 +118,17 @@ fn body_names_are_plain_and_unique() {
 }
 
 #[test]
+fn deflate_levels_beyond_9_are_refused() {
+    let e = error_of(&format!("{MINIMAL}\n[output]\ncompression = 12\n"));
+    assert_eq!(
+        e,
+        "output.compression = 12: expected a deflate level from 0 (none) to 9"
+    );
+    let e = error_of(&format!("{MINIMAL}\n[output]\ncompression = -1\n"));
+    assert!(e.starts_with("output.compression"), "{e}");
+}
+
+#[test]
 fn h_over_dx_out_of_range() {
     let e = error_of(&MINIMAL.replace("spacing = 0.01", "spacing = 0.01\nh_over_dx = 7"));
     assert!(e.starts_with("particles.h_over_dx = 7"), "{e}");

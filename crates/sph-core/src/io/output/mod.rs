@@ -8,10 +8,12 @@
 //! synced ([`atomic`]), so a run that is killed leaves only complete files.
 
 pub mod atomic;
+pub mod compression;
 pub mod manifest;
 pub mod reading;
 pub mod snapshot;
 
+pub use compression::Compression;
 pub use snapshot::{with_extras, write_indexed_snapshot, write_snapshot, Extras};
 
 use crate::error::{Result, SphError};
@@ -37,6 +39,7 @@ pub struct Output {
     manifest: Manifest,
     entries: Vec<Entry>,
     series: Option<BufWriter<File>>,
+    compression: Compression,
 }
 
 impl Output {
@@ -73,6 +76,7 @@ impl Output {
             manifest,
             entries: Vec::new(),
             series: None,
+            compression: Compression::default(),
         })
     }
 
@@ -122,6 +126,7 @@ impl Output {
             manifest,
             entries,
             series: None,
+            compression: Compression::default(),
         };
         out.write_index()?;
         Ok(out)
@@ -129,6 +134,12 @@ impl Output {
 
     pub fn dir(&self) -> &Path {
         &self.dir
+    }
+
+    /// Stores the snapshots and restart files written from now on as `compression` says
+    /// (the default: [`Compression::default`]).
+    pub fn set_compression(&mut self, compression: Compression) {
+        self.compression = compression;
     }
 
     /// Writes a text file atomically inside the folder.
@@ -165,7 +176,7 @@ impl Output {
         let name = snapshot_name(next);
         let path = self.dir.join(&name);
         self.manifest.claim(&name)?;
-        write_snapshot(&path, p, extras, time, step)?;
+        write_snapshot(&path, p, extras, (time, step), self.compression)?;
         self.entries.push(Entry::new(name, time, p.len(), extras));
         self.write_index()?;
         Ok(path)
@@ -237,7 +248,7 @@ impl Output {
         self.manifest.claim(RESTART_PREVIOUS)?;
         let (newest, previous) = (self.dir.join(RESTART), self.dir.join(RESTART_PREVIOUS));
         let tmp = atomic::partial(&newest);
-        if let Err(e) = restart::write_file(&tmp, checkpoint, schedule) {
+        if let Err(e) = restart::write_file(&tmp, checkpoint, schedule, self.compression) {
             let _ = fs::remove_file(&tmp);
             return Err(e);
         }

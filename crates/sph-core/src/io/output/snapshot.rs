@@ -10,6 +10,7 @@
 //! Attributes: `time`, `step`, `dimension`, `creator` (`"deltasph <version>"`).
 
 use super::atomic;
+use super::compression::Compression;
 use crate::error::{Result, SphError};
 use crate::particles::Particles;
 use crate::physics::free_surface::FreeSurface;
@@ -83,18 +84,21 @@ impl Entry {
     }
 }
 
-/// Writes one HDF5 snapshot atomically.
+/// Writes one HDF5 snapshot atomically, its datasets stored as `compression` says.
 pub fn write_snapshot<const D: usize>(
     path: &Path,
     p: &Particles<D>,
     extras: &Extras<D>,
-    time: f64,
-    step: u64,
+    (time, step): (f64, u64),
+    compression: Compression,
 ) -> Result<()> {
-    atomic::write(path, |tmp| write_h5(tmp, p, extras, time, step))
+    atomic::write(path, |tmp| {
+        write_h5(tmp, p, extras, (time, step), compression)
+    })
 }
 
-/// Writes a lone snapshot `path` (HDF5, as [`write_snapshot`]) and beside it an XDMF
+/// Writes a lone snapshot `path` (HDF5, as [`write_snapshot`], compressed at the
+/// default level) and beside it an XDMF
 /// index (`path` with the extension `.xmf`) that ParaView opens, the layout of a run
 /// folder. Existing files are refused unless `overwrite`, and even then only files
 /// deltasph wrote are replaced; returns the index's path.
@@ -134,7 +138,7 @@ pub fn write_indexed_snapshot<const D: usize>(
         .file_name()
         .and_then(|n| n.to_str())
         .ok_or_else(|| SphError::output(path, "not a file name"))?;
-    write_snapshot(path, p, extras, time, step)?;
+    write_snapshot(path, p, extras, (time, step), Compression::default())?;
     let entry = Entry::new(name.to_string(), time, p.len(), extras);
     atomic::write(&index, |tmp| fs::write(tmp, xdmf(&[entry])))?;
     Ok(index)
@@ -171,38 +175,29 @@ fn write_h5<const D: usize>(
     path: &Path,
     p: &Particles<D>,
     extras: &Extras<D>,
-    time: f64,
-    step: u64,
+    (time, step): (f64, u64),
+    c: Compression,
 ) -> hdf5::Result<()> {
     let file = hdf5::File::create(path)?;
     let n = p.len();
     let vector = |name: &str, v: &[crate::Vector<D>]| {
-        file.new_dataset::<f64>()
-            .shape((n, 3))
-            .create(name)?
-            .write_raw(&*padded(v))
+        c.create::<f64>(&file, name, n, 3)?.write_raw(&*padded(v))
     };
     vector("position", &p.x)?;
     vector("velocity", &p.u)?;
-    write_scalars(&file, p)?;
+    write_scalars(&file, p, c)?;
     let vertices: Vec<u32> = (0..n as u32).collect();
-    file.new_dataset::<u32>()
-        .shape(n)
-        .create("connectivity")?
+    c.create::<u32>(&file, "connectivity", n, 1)?
         .write_raw(&vertices)?;
     if let Some(v) = extras.shift_velocity {
         vector("shifting_velocity", v)?;
     }
     if let Some(s) = extras.surface {
         let flag: Vec<u8> = s.on_surface.iter().map(|&b| b as u8).collect();
-        file.new_dataset::<u8>()
-            .shape(n)
-            .create("free_surface")?
+        c.create::<u8>(&file, "free_surface", n, 1)?
             .write_raw(&flag)?;
         vector("normal", &s.normal)?;
-        file.new_dataset::<f64>()
-            .shape(n)
-            .create("lambda")?
+        c.create::<f64>(&file, "lambda", n, 1)?
             .write_raw(&s.lambda)?;
     }
     file.new_attr::<f64>().create("time")?.write_scalar(&time)?;
@@ -226,23 +221,15 @@ pub(crate) fn write_creator(file: &hdf5::File) -> hdf5::Result<()> {
 pub(crate) fn write_scalars<const D: usize>(
     file: &hdf5::File,
     p: &Particles<D>,
+    c: Compression,
 ) -> hdf5::Result<()> {
     let n = p.len();
     for (name, v) in [("density", &p.rho), ("pressure", &p.p)] {
-        file.new_dataset::<f64>()
-            .shape(n)
-            .create(name)?
-            .write_raw(v)?;
+        c.create::<f64>(file, name, n, 1)?.write_raw(v)?;
     }
     let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
-    file.new_dataset::<u8>()
-        .shape(n)
-        .create("kind")?
-        .write_raw(&kind)?;
-    file.new_dataset::<u32>()
-        .shape(n)
-        .create("id")?
-        .write_raw(&p.id)?;
+    c.create::<u8>(file, "kind", n, 1)?.write_raw(&kind)?;
+    c.create::<u32>(file, "id", n, 1)?.write_raw(&p.id)?;
     Ok(())
 }
 

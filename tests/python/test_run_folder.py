@@ -3,6 +3,7 @@ folder file for file, ``Simulation.from_restart`` continues one bit for bit, ``d
 reads folders back, and the ``deltasph`` command is the command line's."""
 
 import os
+import pathlib
 import re
 import shutil
 import signal
@@ -222,3 +223,26 @@ def test_deltasph_plot_writes_pngs(tmp_path):
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     missing = deltasph("plot", tmp_path / "nothing")
     assert missing.returncode == 2 and "not a run folder" in missing.stderr
+
+
+def test_the_probe_panel_keeps_a_probes_first_wet_samples_off_its_axis():
+    """A probe dry until t = 0.5 s whose first wet samples ring (−30 kPa) before a
+    settled ±1 kPa signal: the panel's range is the settled signal's, a dotted line
+    marks the wetting, and the clipped extent is written on the panel."""
+    from types import SimpleNamespace
+
+    from deltasph import plot
+
+    t = np.linspace(0.0, 1.0, 501)
+    wet = np.where(t >= 0.5, 1e3 * np.sin(40 * t), np.nan)
+    first = np.flatnonzero(np.isfinite(wet))[0]
+    wet[first:first + 3] = [-3e4, 2e4, -1.5e4]
+    run = SimpleNamespace(series={"time": t, "probe0_pressure": wet},
+                          path=pathlib.Path("synthetic"), case={})
+    fig = plot.series(run)["probes"]
+    ax = fig.axes[0]
+    lo, hi = ax.get_ylim()
+    assert -1.2e3 < lo < -0.9e3 and 0.9e3 < hi < 1.2e3, (lo, hi)
+    assert ax.get_xlim() == (0.0, 1.0)
+    assert any(line.get_xdata()[0] == t[first] for line in ax.lines[1:])
+    assert "probe0_pressure -30.0 to 20.0 kPa" in ax.texts[0].get_text()

@@ -2,6 +2,8 @@
 libhdf5 among the extension's libraries), and in a fresh virtual environment holding
 only it and numpy it runs a case, reads the snapshot back and answers as `deltasph`."""
 
+import os
+import pathlib
 import re
 import subprocess
 import venv
@@ -16,6 +18,10 @@ WHEELS = ROOT / "target" / "wheels"
 
 @pytest.fixture(scope="module")
 def wheel():
+    """The wheel of scripts/install-python.sh, or the one DELTASPH_WHEEL names (the
+    manylinux2014 wheel of scripts/build-wheel-manylinux.sh)."""
+    if os.environ.get("DELTASPH_WHEEL"):
+        return pathlib.Path(os.environ["DELTASPH_WHEEL"]).resolve()
     found = sorted(WHEELS.glob("deltasph-*.whl"))
     assert len(found) == 1, f"expected the one wheel of scripts/install-python.sh in {WHEELS}"
     return found[0]

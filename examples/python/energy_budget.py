@@ -14,12 +14,17 @@ potential energy the column releases when it comes to rest. A run that blows up 
         # compresses a particle by 21% for an instant, past the default guard of 0.2
 """
 
+from __future__ import annotations
+
 import argparse
 import datetime
 import pathlib
-try:  # Python 3.11+
+import sys
+from typing import Any, List, Optional, Tuple
+
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+else:  # 3.9 and 3.10: pip install tomli
     import tomli as tomllib
 
 import matplotlib
@@ -38,7 +43,7 @@ AVAILABLE = 1000.0 * G * H**3 * (1.0 - 2.0 / 5.366)
 VARIANTS = {"δ-SPH (δ = 0.1)": "delta_sph", "no diffusion": "none"}
 
 
-def arguments():
+def arguments() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--spacing", type=float, default=0.02, help="Δx [m]")
     parser.add_argument("--until", type=float, default=7.0, help="end time in t·sqrt(g/H)")
@@ -50,7 +55,8 @@ def arguments():
     return parser.parse_args()
 
 
-def history(diffusion, spacing, until, alpha, guard):
+def history(diffusion: str, spacing: float, until: float, alpha: Optional[float],
+            guard: Optional[float]) -> Tuple[Any, str]:
     with open(CASE, "rb") as f:
         config = tomllib.load(f)
     config["particles"]["spacing"] = spacing
@@ -64,11 +70,13 @@ def history(diffusion, spacing, until, alpha, guard):
         config["scheme"]["alpha"] = alpha
     sim = ds.Simulation(config)
     t_ref = np.sqrt(H / G)
-    rows, note = [], ""
+    rows: List[Tuple[float, ...]] = []
+    note = ""
     try:
         for t_star in np.arange(0.0, until + 1e-9, 0.05):
             sim.run(until=t_star * t_ref)
-            e = sim.energies()
+            # every entry is a number: the budget is on (None only without it)
+            e = {k: float("nan") if v is None else v for k, v in sim.energies().items()}
             rows.append((t_star, e["kinetic"], e["potential"], e["internal"], e["total"],
                          e["total"] + e["dissipated"]))
     except ds.InstabilityError as err:
@@ -77,7 +85,7 @@ def history(diffusion, spacing, until, alpha, guard):
     return np.array(rows), note
 
 
-def main():
+def main() -> None:
     args = arguments()
     stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")
     out = args.out or pathlib.Path("out") / f"python_energy_budget-{stamp}"

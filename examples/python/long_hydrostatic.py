@@ -13,12 +13,17 @@ three against time.
     python examples/python/long_hydrostatic.py --spacing 0.025  # H/Δx = 40, about 8 minutes
 """
 
+from __future__ import annotations
+
 import argparse
 import datetime
 import pathlib
-try:  # Python 3.11+
+import sys
+from typing import Any, List, Tuple
+
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+else:  # 3.9 and 3.10: pip install tomli
     import tomli as tomllib
 
 import matplotlib
@@ -33,7 +38,7 @@ CASE = pathlib.Path(__file__).resolve().parent.parent / "hydrostatic_2d.toml"
 RHO0, G, H = 1000.0, 9.81, 1.0
 
 
-def arguments():
+def arguments() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--spacing", type=float, default=0.05, help="Δx [m]")
     parser.add_argument("--until", type=float, default=200.0, help="end, in t·sqrt(g/H)")
@@ -41,12 +46,12 @@ def arguments():
     return parser.parse_args()
 
 
-def top_layer(y, dx):
+def top_layer(y: Any, dx: float) -> float:
     """Mean height of the particles within Δx/2 of the highest one."""
-    return y[y > y.max() - 0.5 * dx].mean()
+    return float(y[y > y.max() - 0.5 * dx].mean())
 
 
-def main():
+def main() -> None:
     args = arguments()
     with open(CASE, "rb") as f:
         config = tomllib.load(f)
@@ -56,15 +61,15 @@ def main():
     sim = ds.Simulation(config)
     fluid = sim.kind == ds.FLUID
     top0 = top_layer(sim.positions[fluid, 1], dx)
-    rows = []
+    history: List[Tuple[float, float, float, float]] = []
     for t_star in np.arange(1.0, args.until + 1e-9, 1.0):
         sim.run(until=t_star * np.sqrt(H / G))
         x, p = sim.positions[fluid], sim.pressure[fluid]
         speed = np.linalg.norm(sim.velocities[fluid], axis=1).max()
         error = np.sqrt(np.mean((p - RHO0 * G * (H - x[:, 1])) ** 2)) / (RHO0 * G * H)
-        rows.append((t_star, (top_layer(x[:, 1], dx) - top0) / dx, speed / np.sqrt(G * H),
+        history.append((t_star, (top_layer(x[:, 1], dx) - top0) / dx, speed / np.sqrt(G * H),
                      error))
-    rows = np.array(rows)
+    rows = np.array(history)
     late = rows[rows[:, 0] >= 20.0]
     print(f"H/Δx = {H / dx:g}, {sim.n_fluid} fluid particles, {sim.n_steps} steps to "
           f"t·sqrt(g/H) = {args.until:g}. After t* = 20: surface drift at most "

@@ -12,9 +12,10 @@ shifting the distribution stays regular.
 import argparse
 import datetime
 import pathlib
-try:  # Python 3.11+
+import sys
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # 3.9 and 3.10: pip install tomli
+else:  # 3.9 and 3.10: pip install tomli
     import tomli as tomllib
 
 import matplotlib
@@ -27,7 +28,7 @@ import deltasph as ds  # noqa: E402
 CASE = pathlib.Path(__file__).resolve().parent.parent / "rotating_square_patch.toml"
 
 
-def main():
+def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--spacing", type=float, default=0.02, help="Δx [m] (L = 1 m)")
     parser.add_argument("--until", type=float, default=2.0, help="end time t·ω")

@@ -167,3 +167,54 @@ fn dam_break_example_runs_to_t_star_20_through_the_cavity_closing() {
     assert!(worst_residual < 0.013, "budget residual {worst_residual}");
     assert!(lost > 0.8, "the sloshing has settled ({lost})");
 }
+
+/// A restart file written while a density excursion is under way keeps the stability
+/// guard's memory of it: the continued run stops at the step, and with the message, of
+/// the uninterrupted one ("beyond the limit … since t = <the excursion's first step>").
+/// The case: the dam break at H/Δx = 12 with the symplectic scheme at CFL 3, far past
+/// its acoustic limit (the guard stops it at t = 0.436 s, after an excursion of three
+/// steps since t = 0.416 s; earlier ones were let through).
+#[test]
+fn a_restart_during_a_density_excursion_stops_where_the_whole_run_does() {
+    let case = example_case(
+        "dam_break_2d.toml",
+        &[
+            "particles.spacing = 0.05",
+            "scheme.integrator = \"symplectic\"",
+            "scheme.cfl = 3.0",
+            "time.end = 2.0",
+        ],
+    );
+    let stop = |sim: &mut Simulation<2>| loop {
+        if let Err(e) = sim.step() {
+            return (sim.time(), e.to_string());
+        }
+        assert!(sim.time() < 2.0, "the guard never stopped the run");
+    };
+    let expected = stop(&mut Simulation::<2>::new(case.clone()).unwrap());
+    let since: f64 = (expected.1.split("since t = ").nth(1))
+        .and_then(|rest| rest.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("{}", expected.1));
+    // the same run to the first step past the excursion's start, restarted there
+    let mut part = Simulation::<2>::new(case).unwrap();
+    while part.time() < since + 1e-6 {
+        part.step().unwrap();
+    }
+    assert!(part.time() < expected.0, "no step inside the excursion");
+    let path = std::env::temp_dir().join(format!("restart_excursion_{}.h5", std::process::id()));
+    let schedule = sph_core::io::restart::Schedule {
+        next_snapshot: 2.0,
+        next_series: 2.0,
+        next_restart: f64::INFINITY,
+        snapshots: 0,
+        initial_energy: 0.0,
+    };
+    let packing = sph_core::io::output::Compression::default();
+    sph_core::io::restart::write_file(&path, &part.checkpoint().unwrap(), &schedule, packing)
+        .unwrap();
+    let (checkpoint, _) = sph_core::io::restart::read::<2>(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let mut resumed = Simulation::<2>::from_checkpoint(checkpoint, None).unwrap();
+    assert!(expected.1.contains("beyond the limit"), "{}", expected.1);
+    assert_eq!(stop(&mut resumed), expected);
+}

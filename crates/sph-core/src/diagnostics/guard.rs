@@ -92,14 +92,23 @@ pub enum Verdict {
 }
 
 /// Steps with some fluid particle beyond the limit, less than the window apart.
-#[derive(Debug, Clone)]
-struct Excursion {
+#[derive(Debug, Clone, PartialEq)]
+pub struct Excursion {
     /// The first and the last step beyond the limit \[s\].
-    start: f64,
-    end: f64,
+    pub start: f64,
+    pub end: f64,
     /// Steps beyond the limit.
-    steps: usize,
-    peak: Holder,
+    pub steps: usize,
+    pub peak: Holder,
+}
+
+/// What a restart file keeps of a [`DensityWatch`], so that a continued run stops, or
+/// lets a transient through, at the step the uninterrupted one does: the transients
+/// reported so far and the excursion under way.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct WatchMemory {
+    pub reported: usize,
+    pub open: Option<Excursion>,
 }
 
 /// Follows `max |ρ/ρ0 - 1|` step by step and tells an impact's transient from a
@@ -125,6 +134,20 @@ impl DensityWatch {
             open: None,
             reported: 0,
         }
+    }
+
+    /// What a restart file keeps of this watch.
+    pub fn memory(&self) -> WatchMemory {
+        WatchMemory {
+            reported: self.reported,
+            open: self.open.clone(),
+        }
+    }
+
+    /// Continues from a restart file's [`WatchMemory`].
+    pub fn recall(&mut self, memory: WatchMemory) {
+        self.reported = memory.reported;
+        self.open = memory.open;
     }
 
     /// Takes the state at `time`: `variation` the largest `|ρ/ρ0 - 1|` over the fluid

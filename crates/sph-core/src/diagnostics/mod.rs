@@ -18,7 +18,9 @@ pub mod sensors;
 pub mod series;
 
 pub use crossings::wall_crossings;
-pub use guard::{densest_excursion, find_instability, DensityWatch, Holder, Verdict};
+pub use guard::{
+    densest_excursion, find_instability, DensityWatch, Excursion, Holder, Verdict, WatchMemory,
+};
 
 use crate::domain::Domain;
 use crate::neighbours::NeighbourList;

@@ -14,10 +14,12 @@
 //! carries the case as TOML, so it is self-contained. Reading checks every shape and
 //! value it relies on: a damaged or foreign file is an error naming what is wrong.
 
+use crate::diagnostics::{Excursion, Holder, WatchMemory};
 use crate::error::{Result, SphError};
 use crate::io::output::compression::Compression;
 use crate::particles::{Kind, Particles, Vector};
 use crate::simulation::{Checkpoint, Counters, EnergyBudget};
+use hdf5::types::VarLenUnicode;
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -120,8 +122,34 @@ fn write_h5<const D: usize>(
     write_records(&file, "sensor_filters", &c.sensor_filters)?;
     write_records(&file, "free_bodies", &c.free_bodies)?;
     write_records(&file, "absorbing_paddles", &c.absorbing_paddles)?;
+    write_watch(&file, &c.density_watch)?;
     crate::io::output::snapshot::write_creator(&file)?;
     file.close()
+}
+
+/// The stability guard's memory: `density_watch_reported`, and for an excursion under
+/// way `density_watch_excursion` (start, end, steps, peak particle, peak variation) and
+/// `density_watch_position` (the peak's position as text).
+fn write_watch(file: &hdf5::File, w: &WatchMemory) -> hdf5::Result<()> {
+    (file.new_attr::<u64>().create("density_watch_reported")?)
+        .write_scalar(&(w.reported as u64))?;
+    let Some(e) = &w.open else {
+        return Ok(());
+    };
+    let record = [
+        e.start,
+        e.end,
+        e.steps as f64,
+        e.peak.particle as f64,
+        e.peak.variation,
+    ];
+    write_records(file, "density_watch_excursion", &[record])?;
+    let text: VarLenUnicode =
+        (e.peak.position.parse()).unwrap_or_else(|_| "(unknown)".parse().expect("no NUL"));
+    (file
+        .new_attr::<VarLenUnicode>()
+        .create("density_watch_position")?)
+    .write_scalar(&text)
 }
 
 /// Fixed-length records as one flat attribute, none when there are no records.
@@ -277,6 +305,7 @@ impl Reader<'_> {
             sensor_filters: self.records("sensor_filters")?,
             free_bodies: self.records("free_bodies")?,
             absorbing_paddles: self.records("absorbing_paddles")?,
+            density_watch: self.watch()?,
         };
         let schedule = Schedule {
             next_snapshot: self.attr("next_snapshot")?,
@@ -286,6 +315,28 @@ impl Reader<'_> {
             initial_energy: self.attr("initial_energy")?,
         };
         Ok((checkpoint, schedule))
+    }
+
+    /// The guard's memory of [`write_watch`] (a fresh one in files written before it).
+    fn watch(&self) -> Result<WatchMemory> {
+        let reported = self.attr::<u64>("density_watch_reported").unwrap_or(0) as usize;
+        let open = match self.records::<5>("density_watch_excursion")?.as_slice() {
+            [] => None,
+            [[start, end, steps, particle, variation]] => Some(Excursion {
+                start: *start,
+                end: *end,
+                steps: *steps as usize,
+                peak: Holder {
+                    particle: *particle as u32,
+                    position: self
+                        .attr::<VarLenUnicode>("density_watch_position")?
+                        .to_string(),
+                    variation: *variation,
+                },
+            }),
+            _ => return Err(self.corrupt("density_watch_excursion holds more than one")),
+        };
+        Ok(WatchMemory { reported, open })
     }
 
     /// The records of [`write_records`] (none when the attribute is absent).

@@ -4,6 +4,7 @@
 
 use super::{Counters, EnergyBudget, Simulation, State};
 use crate::case::Case;
+use crate::diagnostics::WatchMemory;
 use crate::error::{Result, SphError};
 use crate::motion::free::RECORD;
 use crate::neighbours::NeighbourList;
@@ -35,6 +36,8 @@ pub struct Checkpoint<'a, const D: usize> {
     /// The state of each absorbing wave maker (see
     /// [`crate::waves::active_absorption::Record`]), in case order.
     pub absorbing_paddles: Vec<crate::waves::active_absorption::Record>,
+    /// The stability guard's transients reported and excursion under way.
+    pub density_watch: WatchMemory,
 }
 
 impl<const D: usize> Checkpoint<'_, D> {
@@ -53,6 +56,7 @@ impl<const D: usize> Checkpoint<'_, D> {
             sensor_filters: self.sensor_filters,
             free_bodies: self.free_bodies,
             absorbing_paddles: self.absorbing_paddles,
+            density_watch: self.density_watch,
         }
     }
 }
@@ -77,6 +81,7 @@ impl<const D: usize> Simulation<D> {
             free_bodies: (self.stepper.motions.as_ref()).map_or(Vec::new(), |m| m.free_records()),
             absorbing_paddles: (self.stepper.motions.as_ref())
                 .map_or(Vec::new(), |m| m.absorption_records()),
+            density_watch: self.stepper.density_watch.memory(),
         })
     }
 
@@ -161,6 +166,7 @@ impl<const D: usize> Simulation<D> {
             counters: c.counters,
         };
         sim.stepper.last_acceleration = c.last_acceleration;
+        sim.stepper.density_watch.recall(c.density_watch);
         sim.budget = c.budget;
         Ok(sim)
     }

@@ -62,7 +62,7 @@ pub struct Stepper<const D: usize> {
     /// `stability.max_mach`.
     max_mach: f64,
     /// The density guard, which lets an impact's transient through.
-    density_watch: DensityWatch,
+    pub(super) density_watch: DensityWatch,
     /// Whether the domain is the default box around the initial particles (no
     /// `[domain]` table): the first fluid it removes is reported in `notices`.
     default_domain: bool,

@@ -3,15 +3,17 @@
 from collections.abc import Callable, Mapping
 from os import PathLike
 from pathlib import Path
-from typing import Any, Optional, Union
+from typing import Any, Optional, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
+__all__ = ["Simulation", "read_snapshot", "cli", "case_schema", "regular_wave", "__version__"]
 
 _Progress = Union[bool, None, Callable[[float, int], object]]
 
+@final
 class Simulation:
     """A weakly-compressible δ-SPH simulation, 2D or 3D.
 
@@ -19,7 +21,7 @@ class Simulation:
     created ``i``-th, across steps and neighbour-list rebuilds.
     """
 
-    def __init__(self, config: Mapping[str, Any]) -> None:
+    def __new__(cls, config: Mapping[str, Any]) -> Simulation:
         """Builds a simulation from a dict mirroring the TOML case file, key for key.
 
         Raises ConfigError (ValueError) for a bad value, ConfigKeyError (KeyError)
@@ -58,8 +60,16 @@ class Simulation:
     ) -> Simulation:
         """Continues a run from its restart file, bit for bit; ``run(out=<its folder>)``
         goes on writing that folder."""
-    def step(self, n: int = 1) -> None:
-        """Advances exactly ``n`` steps."""
+    def step(self, n: Optional[int] = None) -> None:
+        """Advances exactly ``n`` steps (default 1)."""
+    @property
+    def failed(self) -> Optional[str]:
+        """The stability guard's message if it stopped this simulation (its state
+        arrays then hold the blown-up state, kept for inspection), else None."""
+    @property
+    def removed_mass(self) -> float:
+        """Mass [kg] of the fluid removed so far because it left the domain (per metre
+        of depth in 2D)."""
     @property
     def time(self) -> float:
         """Simulated time [s]."""
@@ -80,6 +90,9 @@ class Simulation:
     @property
     def n_removed(self) -> int:
         """Fluid particles removed after leaving the domain (NaN rows, kind 255)."""
+    @property
+    def n_created(self) -> int:
+        """Fluid particles created so far at inlets (each with a new id, a new row)."""
     @property
     def n_fluid(self) -> int: ...
     @property
@@ -127,6 +140,13 @@ class Simulation:
     def probe_velocity(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Shepard-interpolated fluid velocity [m/s] at points (M, D) or one point (D,),
         (M, D); NaN rows where no fluid is within the kernel support."""
+    def loads(self) -> dict[str, dict[str, npt.NDArray[np.float64]]]:
+        """The fluid's load on each body (every tank and wall, by name, in case order):
+        ``{name: {"pressure": (D,), "viscous": (D,), "moment": (3,)}}`` in N (per unit
+        width in 2D) and N m about ``diagnostics.moment_point``."""
+    def body_motions(self) -> dict[str, dict[str, npt.NDArray[np.float64]]]:
+        """The moving bodies now, by name: ``position`` (D,), ``rotation`` (1,) or (3,),
+        ``velocity`` (D,), ``angular_velocity`` (1,) or (3,); empty when all are fixed."""
     def prescribed_motion(
         self, times: npt.ArrayLike
     ) -> dict[str, dict[str, npt.NDArray[np.float64]]]:

@@ -1,9 +1,16 @@
 """Progress reporting for ``Simulation.run``: a callable, a tqdm bar, or nothing."""
 
+from __future__ import annotations
+
 import sys
+from typing import Any, Callable, Optional, Union
+
+#: What ``Simulation.run`` calls with the simulated time and the step count.
+Report = Callable[[float, int], Any]
 
 
-def reporter(progress, start, until):
+def reporter(progress: Union[None, bool, Report], start: float,
+             until: float) -> Optional[Report]:
     """Turns the ``progress`` argument of ``run`` into a callable ``(time, n_steps)`` or None."""
     if progress is None or progress is False:
         return None
@@ -16,7 +23,7 @@ def reporter(progress, start, until):
     )
 
 
-def close(report):
+def close(report: Optional[Report]) -> None:
     """Finishes a reporter made by :func:`reporter` (only the built-in bar needs it)."""
     if isinstance(report, _Bar):
         report.close()
@@ -25,18 +32,18 @@ def close(report):
 class _Bar:
     """A tqdm bar over simulated time when tqdm is installed, else a one-line counter."""
 
-    def __init__(self, start, until):
+    def __init__(self, start: float, until: float) -> None:
         self.start = start
         self.span = max(until - start, 0.0)
         try:
-            from tqdm.auto import tqdm
+            from tqdm.auto import tqdm  # type: ignore[import-untyped, unused-ignore]
         except ImportError:
-            self.bar = None
+            self.bar: Any = None
         else:
             self.bar = tqdm(total=self.span, unit="s", unit_scale=True, desc="deltasph")
         self.done = 0.0
 
-    def __call__(self, time, n_steps):
+    def __call__(self, time: float, n_steps: int) -> None:
         done = min(max(time - self.start, 0.0), self.span)
         if self.bar is not None:
             self.bar.update(done - self.done)
@@ -47,7 +54,7 @@ class _Bar:
                   end="", file=sys.stderr, flush=True)
         self.done = done
 
-    def close(self):
+    def close(self) -> None:
         if self.bar is not None:
             self.bar.close()
         else:

@@ -32,7 +32,8 @@ class InstabilityError(RuntimeError):
         reason: what the guard saw (e.g. ``"density variation 0.35 > 0.2"``).
     """
 
-    def __init__(self, message, time, step, particle, position, reason):
+    def __init__(self, message: str, time: float, step: int, particle: int, position: str,
+                 reason: str) -> None:
         super().__init__(message)
         self.time = time
         self.step = step

@@ -11,12 +11,21 @@
 ``deltasph plot <run folder>`` writes the same as PNGs.
 """
 
+from __future__ import annotations
+
 import argparse
 import pathlib
 import re
 import sys
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
+import numpy.typing as npt
+
+from .runs import PathLike, RunFolder
+
+#: Arrays of floats.
+Floats = npt.NDArray[np.float64]
 
 #: Units of the snapshot fields, for colour bars.
 UNITS = {
@@ -50,7 +59,7 @@ PANELS = [
 RINGING = 8
 
 
-def _mark_wetting(ax, t, data, lines):
+def _mark_wetting(ax: Any, t: Floats, data: Mapping[str, Floats], lines: Dict[str, Any]) -> None:
     """Dotted lines where each probe finds fluid after a dry spell; the axis range left
     to the settled samples, the clipped ringing's extent written on the panel."""
     settled, clipped = [], []
@@ -77,7 +86,7 @@ def _mark_wetting(ax, t, data, lines):
             transform=ax.transAxes, va="top", fontsize=7)
 
 
-def _wave_targets(case):
+def _wave_targets(case: Mapping[str, Any]) -> Optional[Tuple[float, float]]:
     """The crest and trough of the regular waves a case's wave maker makes (Stokes's
     second order: ±H/2 + A2), or None."""
     from ._core import regular_wave
@@ -94,11 +103,11 @@ def _wave_targets(case):
             period = 2 * np.pi / np.sqrt(gravity * k * np.tanh(k * waves["depth"]))
         theory = regular_wave(waves["height"], period, waves["depth"], gravity)
         half, a2 = 0.5 * waves["height"], theory["bound_second_harmonic"]
-        return half + a2, -half + a2
+        return float(half + a2), float(-half + a2)
     return None
 
 
-def _pyplot():
+def _pyplot() -> Any:
     try:
         import matplotlib
 
@@ -112,7 +121,7 @@ def _pyplot():
     return plt
 
 
-def _state(source):
+def _state(source: Any) -> Tuple[Floats, Any, Mapping[str, Any], float, Optional[float]]:
     """Positions, kind, fields, time and spacing of a Snapshot or a Simulation."""
     if hasattr(source, "positions"):  # a live Simulation
         fields = {"pressure": source.pressure, "density": source.density,
@@ -125,24 +134,26 @@ def _state(source):
             getattr(source, "spacing", None))
 
 
-def _values(fields, field):
+def _values(fields: Mapping[str, Any], field: str) -> Floats:
     if field not in fields:
         raise KeyError(f"field = {field!r}: expected one of {sorted(fields)}")
-    values = np.asarray(fields[field], dtype=float)
+    values: Floats = np.asarray(fields[field], dtype=float)
     return np.linalg.norm(values, axis=1) if values.ndim == 2 else values
 
 
-def _marker_size(ax, spacing, fig):
+def _marker_size(ax: Any, spacing: float, fig: Any) -> float:
     """Marker area (points²) of a disc Δx across, in the axes' data scale once the
     figure is laid out."""
     fig.canvas.draw()
     x0, x1 = ax.transData.transform([(0.0, 0.0), (spacing, 0.0)])[:, 0]
     points = abs(x1 - x0) * 72.0 / fig.dpi
-    return max(points, 0.5) ** 2
+    return float(max(points, 0.5)) ** 2
 
 
-def snapshot(source, field="pressure", ax=None, spacing=None, cmap="viridis", scale=1.0,
-             label=None, vmin=None, vmax=None):
+def snapshot(source: Any, field: str = "pressure", ax: Any = None,
+             spacing: Optional[float] = None, cmap: str = "viridis", scale: float = 1.0,
+             label: Optional[str] = None, vmin: Optional[float] = None,
+             vmax: Optional[float] = None) -> Any:
     """Draws the fluid of ``source`` (a :class:`deltasph.runs.Snapshot` or a
     ``Simulation``) coloured by ``field`` (vectors by their magnitude) times ``scale``,
     walls grey, each particle a disc Δx across, with a colour bar in the field's unit
@@ -184,7 +195,7 @@ def snapshot(source, field="pressure", ax=None, spacing=None, cmap="viridis", sc
     return fig
 
 
-def series(run):
+def series(run: RunFolder) -> Dict[str, Any]:
     """Figures of the time series of a run folder (``ds.load(...)``), one per panel
     that has columns: energy, power, probes, density, surge front, loads, gauges (with
     the target crest and trough of a regular wave maker). Returns ``{panel: Figure}``."""
@@ -213,7 +224,8 @@ def series(run):
     return figures
 
 
-def write(run, out=None, fields=("pressure",), count=4):
+def write(run: RunFolder, out: Optional[PathLike] = None, fields: Sequence[str] = ("pressure",),
+          count: int = 4) -> List[pathlib.Path]:
     """Writes PNGs of ``count`` snapshots (spread over the run, the last included) of
     each of ``fields``, and of the time series, into ``out`` (default:
     ``<run folder>/plots``, created). Returns the paths written."""
@@ -238,7 +250,7 @@ def write(run, out=None, fields=("pressure",), count=4):
     return written
 
 
-def main(argv=None):
+def main(argv: Optional[Sequence[str]] = None) -> int:
     """``deltasph plot <run folder> [--field F ...] [--count N] [--out DIR]``."""
     from .runs import load
 

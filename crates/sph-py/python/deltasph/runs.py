@@ -10,27 +10,36 @@ A run folder is what ``sph-cli run`` (or ``Simulation.run(out=...)``) writes::
     run.series["time"], run.series["probe0_pressure"]
 """
 
+from __future__ import annotations
+
 import math
+import os
 import pathlib
+import sys
 import xml.etree.ElementTree as ElementTree
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _core
 
-try:  # Python 3.11+
+if sys.version_info >= (3, 11):
     import tomllib as _toml
-except ModuleNotFoundError:  # Python 3.9 and 3.10
+else:  # Python 3.9 and 3.10
     import tomli as _toml
 
+#: A file or folder name.
+PathLike = Union[str, "os.PathLike[str]"]
 
-class Snapshot(dict):
+
+class Snapshot(Dict[str, npt.NDArray[Any]]):
     """The fields of one snapshot by name (``position``, ``velocity`` (N, D),
     ``density``, ``pressure``, ``kind``, ``id`` (N,), and the optional ``free_surface``,
     ``normal``, ``lambda``, ``shifting_velocity``), rows sorted by particle id; with
     ``time`` [s], ``step`` and ``path``."""
 
-    def __init__(self, path, spacing=None):
+    def __init__(self, path: PathLike, spacing: Optional[float] = None) -> None:
         time, step, fields = _core.read_snapshot(str(path))
         order = np.argsort(fields["id"], kind="stable")
         super().__init__((name, values[order]) for name, values in fields.items())
@@ -38,7 +47,7 @@ class Snapshot(dict):
         #: The run's particle spacing Δx [m], when known (snapshots from a run folder).
         self.spacing = spacing
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"Snapshot('{self.path.name}', t = {self.time:.6g} s, step {self.step}, "
                 f"{len(self['id'])} particles, fields {sorted(self)})")
 
@@ -50,7 +59,7 @@ class RunFolder:
     ``dataframe()`` (the same as a pandas DataFrame), ``case`` (its ``case.toml`` as a
     dict) and ``restart`` (the newest restart file, or None)."""
 
-    def __init__(self, path):
+    def __init__(self, path: PathLike) -> None:
         self.path = pathlib.Path(path)
         index = self.path / "particles.xmf"
         if not index.is_file():
@@ -58,17 +67,17 @@ class RunFolder:
                 f"{self.path}: not a run folder (expected particles.xmf, the index that "
                 f"sph-cli run and Simulation.run(out=...) write)")
         self.files, self.times = _index(index)
-        self._series = None
-        self._spacing = None
+        self._series: Optional[Dict[str, npt.NDArray[np.float64]]] = None
+        self._spacing: Optional[float] = None
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.files)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         span = f"t = {self.times[0]:.6g}–{self.times[-1]:.6g} s" if len(self) else "empty"
         return f"RunFolder('{self.path}', {len(self)} snapshots, {span})"
 
-    def snapshot(self, index):
+    def snapshot(self, index: int) -> Snapshot:
         """The snapshot at position ``index`` of the index (negative from the end)."""
         if self._spacing is None and (self.path / "case.toml").is_file():
             self._spacing = self.case.get("particles", {}).get("spacing")
@@ -76,7 +85,7 @@ class RunFolder:
 
     __getitem__ = snapshot
 
-    def at(self, time):
+    def at(self, time: float) -> Snapshot:
         """The snapshot nearest to ``time`` [s]."""
         if not len(self):
             raise IndexError(f"{self.path}: the run folder holds no snapshot")
@@ -85,7 +94,7 @@ class RunFolder:
         return self.snapshot(int(np.argmin(np.abs(self.times - time))))
 
     @property
-    def series(self):
+    def series(self) -> Dict[str, npt.NDArray[np.float64]]:
         """``timeseries.csv`` as ``{column: array}``; NaN where a probe had no fluid."""
         if self._series is None:
             path = self.path / "timeseries.csv"
@@ -95,37 +104,38 @@ class RunFolder:
             self._series = {name: data[:, k] for k, name in enumerate(names)}
         return self._series
 
-    def dataframe(self):
+    def dataframe(self) -> Any:
         """The time series as a pandas DataFrame (needs pandas)."""
-        import pandas
+        import pandas  # type: ignore[import-untyped, import-not-found, unused-ignore]
 
         return pandas.DataFrame(self.series)
 
     @property
-    def case(self):
+    def case(self) -> Dict[str, Any]:
         """The case of the run (``case.toml``) as a dict."""
         with open(self.path / "case.toml", "rb") as f:
             return _toml.load(f)
 
     @property
-    def restart(self):
+    def restart(self) -> Optional[pathlib.Path]:
         """The newest restart file (for ``Simulation.from_restart``), or None."""
         path = self.path / "restart.h5"
         return path if path.is_file() else None
 
 
-def _index(path):
+def _index(path: pathlib.Path) -> Tuple[List[str], npt.NDArray[np.float64]]:
     """Snapshot files and times listed by an XDMF index that deltasph wrote."""
     root = ElementTree.parse(path).getroot()
-    files, times = [], []
+    files: List[str] = []
+    times: List[float] = []
     for grid in root.iter("Grid"):
         time = grid.find("Time")
         if grid.get("GridType") == "Uniform" and time is not None:
-            files.append(grid.get("Name"))
-            times.append(float(time.get("Value")))
+            files.append(grid.get("Name", ""))
+            times.append(float(time.get("Value", "nan")))
     return files, np.array(times)
 
 
-def load(path):
+def load(path: PathLike) -> RunFolder:
     """The run folder ``path`` (see :class:`RunFolder`)."""
     return RunFolder(path)

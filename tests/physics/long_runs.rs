@@ -201,20 +201,7 @@ fn a_restart_during_a_density_excursion_stops_where_the_whole_run_does() {
         part.step().unwrap();
     }
     assert!(part.time() < expected.0, "no step inside the excursion");
-    let path = std::env::temp_dir().join(format!("restart_excursion_{}.h5", std::process::id()));
-    let schedule = sph_core::io::restart::Schedule {
-        next_snapshot: 2.0,
-        next_series: 2.0,
-        next_restart: f64::INFINITY,
-        snapshots: 0,
-        initial_energy: 0.0,
-    };
-    let packing = sph_core::io::output::Compression::default();
-    sph_core::io::restart::write_file(&path, &part.checkpoint().unwrap(), &schedule, packing)
-        .unwrap();
-    let (checkpoint, _) = sph_core::io::restart::read::<2>(&path).unwrap();
-    std::fs::remove_file(&path).unwrap();
-    let mut resumed = Simulation::<2>::from_checkpoint(checkpoint, None).unwrap();
+    let mut resumed = crate::moving_bodies::through_restart_file(&part, 2.0);
     assert!(expected.1.contains("beyond the limit"), "{}", expected.1);
     assert_eq!(stop(&mut resumed), expected);
 }

@@ -102,6 +102,29 @@ fn a_vertically_shaken_tank_holds_the_pressure_of_its_apparent_gravity() {
     );
 }
 
+/// `sim` written to a restart file (compressed, as runs write them; its schedule ending
+/// at `end`) and read back as a new simulation.
+pub(crate) fn through_restart_file(sim: &Simulation<2>, end: f64) -> Simulation<2> {
+    let path = std::env::temp_dir().join(format!(
+        "restart_{}_{}.h5",
+        std::process::id(),
+        sim.counters().steps
+    ));
+    let schedule = sph_core::io::restart::Schedule {
+        next_snapshot: end,
+        next_series: end,
+        next_restart: f64::INFINITY,
+        snapshots: 0,
+        initial_energy: 0.0,
+    };
+    let packing = sph_core::io::output::Compression::default();
+    sph_core::io::restart::write_file(&path, &sim.checkpoint().unwrap(), &schedule, packing)
+        .unwrap();
+    let (checkpoint, _) = sph_core::io::restart::read::<2>(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    Simulation::<2>::from_checkpoint(checkpoint, None).unwrap()
+}
+
 /// Runs `case` to `half`, writes a restart file, reads it back and runs both the
 /// whole and the resumed run to `end`: they must agree bit for bit (particles and
 /// the time series). Returns the whole run.
@@ -114,20 +137,7 @@ pub(crate) fn assert_restarts_bit_for_bit(
     while whole.time() < half * (1.0 - 1e-12) {
         whole.step_until(half).unwrap();
     }
-    let path = std::env::temp_dir().join(format!("restart_{}_{half}.h5", std::process::id()));
-    let schedule = sph_core::io::restart::Schedule {
-        next_snapshot: end,
-        next_series: end,
-        next_restart: f64::INFINITY,
-        snapshots: 0,
-        initial_energy: 0.0,
-    };
-    let packing = sph_core::io::output::Compression::default();
-    sph_core::io::restart::write_file(&path, &whole.checkpoint().unwrap(), &schedule, packing)
-        .unwrap();
-    let (checkpoint, _) = sph_core::io::restart::read::<2>(&path).unwrap();
-    std::fs::remove_file(&path).unwrap();
-    let mut resumed = Simulation::<2>::from_checkpoint(checkpoint, None).unwrap();
+    let mut resumed = through_restart_file(&whole, end);
     let differing = |a: &Simulation<2>, b: &Simulation<2>| {
         let (a, b) = (a.particles(), b.particles());
         (0..a.len())

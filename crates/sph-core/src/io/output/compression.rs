@@ -13,7 +13,7 @@ use hdf5::{Dataset, H5Type};
 /// and levels 4–9 gain under 2% more while writing 1.2–7× slower.
 pub const DEFAULT_LEVEL: u8 = 2;
 
-/// The largest chunk [bytes]: big enough that deflate sees long runs of similar values,
+/// The largest chunk \[bytes\]: big enough that deflate sees long runs of similar values,
 /// small enough that a reader of part of a file decompresses little beyond it.
 pub const CHUNK_BYTES: usize = 1 << 20;
 

@@ -400,7 +400,7 @@ pub struct OutputConfig {
     /// ParaView, VisIt and h5py read them as they are): 1 fastest to 9 smallest, 0 for
     /// none. Default: 2, measured on the dam-break examples: snapshots 43% (2D) and 70%
     /// (3D) smaller, restart files 37% and 67%, run time unchanged within its noise;
-    /// levels 4–9 shrink the files by under 2% more and write up to 7× slower.
+    /// levels 4–9 shrink the files by at most 4% more and write up to 7× slower.
     #[serde(default)]
     pub compression: Option<u8>,
 }

@@ -121,8 +121,8 @@ pub struct DensityWatch {
     acoustic: f64,
     /// `stability.transient`: the longest excursion let through, in `h/c0`.
     transient: f64,
-    open: Option<Excursion>,
-    reported: usize,
+    /// The transients reported so far and the excursion under way.
+    memory: WatchMemory,
 }
 
 impl DensityWatch {
@@ -131,23 +131,18 @@ impl DensityWatch {
             limit,
             acoustic,
             transient,
-            open: None,
-            reported: 0,
+            memory: WatchMemory::default(),
         }
     }
 
     /// What a restart file keeps of this watch.
     pub fn memory(&self) -> WatchMemory {
-        WatchMemory {
-            reported: self.reported,
-            open: self.open.clone(),
-        }
+        self.memory.clone()
     }
 
     /// Continues from a restart file's [`WatchMemory`].
     pub fn recall(&mut self, memory: WatchMemory) {
-        self.reported = memory.reported;
-        self.open = memory.open;
+        self.memory = memory;
     }
 
     /// Takes the state at `time`: `variation` the largest `|ρ/ρ0 - 1|` over the fluid
@@ -161,14 +156,14 @@ impl DensityWatch {
     ) -> Verdict {
         let window = self.transient * self.acoustic;
         if variation <= self.limit {
-            let relieved = (self.open.as_ref()).is_some_and(|e| time - e.end > window);
-            return match self.open.take_if(|_| relieved) {
+            let relieved = (self.memory.open.as_ref()).is_some_and(|e| time - e.end > window);
+            return match self.memory.open.take_if(|_| relieved) {
                 Some(e) => self.report(e),
                 None => Verdict::Calm,
             };
         }
         let now = holder();
-        let excursion = self.open.get_or_insert_with(|| Excursion {
+        let excursion = self.memory.open.get_or_insert_with(|| Excursion {
             start: time,
             end: time,
             steps: 0,
@@ -199,8 +194,8 @@ impl DensityWatch {
     /// The notice for an excursion that ended within the window (none past the
     /// [`REPORTED`]th but one that says so).
     fn report(&mut self, e: Excursion) -> Verdict {
-        self.reported += 1;
-        if self.reported > REPORTED {
+        self.memory.reported += 1;
+        if self.memory.reported > REPORTED {
             return Verdict::Calm;
         }
         let lasted = e.end - e.start;
@@ -219,7 +214,7 @@ impl DensityWatch {
             lasted / self.acoustic,
             self.transient,
         );
-        if self.reported == REPORTED {
+        if self.memory.reported == REPORTED {
             text.push_str("; further transients are not listed");
         }
         Verdict::Transient(text)

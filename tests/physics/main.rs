@@ -12,6 +12,7 @@ mod impinging_jet;
 mod les;
 mod loads;
 mod long_runs;
+mod measure;
 mod moving_bodies;
 mod open_boundaries;
 mod oscillating_cylinder;

@@ -1,4 +1,4 @@
-//! The deltasph command line: runs, checks and previews TOML cases. The `sph-cli`
+//! The deltasph command line: runs, checks and previews TOML cases, and measures runs. The `sph-cli`
 //! binary and the Python wheel's `deltasph` command are both [`main_with`].
 
 use anyhow::Result;
@@ -17,6 +17,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 mod check;
+mod measure;
 mod processes;
 mod summary;
 
@@ -26,7 +27,7 @@ use processes::Processes;
 #[command(
     name = "sph-cli",
     version,
-    about = "Weakly-compressible δ-SPH solver: run and check TOML cases"
+    about = "Weakly-compressible δ-SPH solver: run and check TOML cases, measure their runs"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -89,6 +90,10 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Read pressure, velocity or density at points, and the free-surface elevation on
+    /// vertical lines, from every snapshot of a finished run (the rules of the in-run
+    /// probes and gauges; NaN where no fluid is in reach) as CSV: a row per snapshot.
+    Measure(measure::MeasureArgs),
     /// Print the JSON Schema of the case file, for TOML editors (Taplo, Even Better
     /// TOML): save it and start a case file with `#:schema ./case.schema.json`.
     Schema,
@@ -191,6 +196,7 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
             })
         }
         Command::Check { case, ranks } => check::check(&case, ranks),
+        Command::Measure(args) => measure::run(args),
         Command::Preview { case, out, force } => preview(&case, out, force),
         Command::Schema => {
             print!("{}", sph_core::case::json_schema::case_schema());

@@ -9,7 +9,7 @@
 //!
 //! Modules by concept, each depending only on those listed before it: [`particles`],
 //! [`domain`] → [`decomposition`] → [`distributed`], [`neighbours`] → [`physics`] → [`boundary`] → [`waves`] → [`case`] → [`scheme`],
-//! [`geometry`], [`forcing`], [`motion`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`].
+//! [`geometry`], [`forcing`], [`motion`] → [`time`], [`diagnostics`] → [`simulation`] → [`io`] → [`run`], [`postprocess`].
 
 pub mod allocator;
 pub mod boundary;
@@ -26,6 +26,7 @@ pub mod motion;
 pub mod neighbours;
 pub mod particles;
 pub mod physics;
+pub mod postprocess;
 pub mod run;
 pub mod scheme;
 pub mod simulation;

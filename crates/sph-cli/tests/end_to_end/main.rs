@@ -4,5 +4,6 @@
 mod check;
 mod cli;
 mod common;
+mod measure;
 mod output_safety;
 mod restart;

@@ -7,6 +7,7 @@
 //! with no sample at ½ is dry: the gauge reads its bottom.
 
 use crate::case::{Case, GaugeConfig};
+use crate::error::{Result, SphError};
 use crate::particles::Vector;
 
 /// One gauge's line.
@@ -36,6 +37,30 @@ impl<const D: usize> Gauge<D> {
             points,
             still_level: case.diagnostics.still_level.unwrap_or(0.0),
         }
+    }
+
+    /// A gauge on the vertical line at `position` (x in 2D, (x, y) in 3D), spanning the
+    /// case's `[domain]` or `[[tank]]` height; refused, naming `key`, where the position
+    /// is not D - 1 finite coordinates or the case gives no vertical extent.
+    pub fn at(case: &Case, position: &[f64], key: &str) -> Result<Self> {
+        let config = GaugeConfig {
+            name: key.to_string(),
+            position: position.to_vec(),
+            bottom: None,
+            top: None,
+        };
+        let finite = position.iter().all(|v| v.is_finite());
+        if position.len() + 1 != D || !finite || case.gauge_line(&config).is_none() {
+            return Err(SphError::invalid(
+                key,
+                format!("{position:?}"),
+                format!(
+                    "{} coordinate(s) of a vertical line within a [domain] or [[tank]]",
+                    D - 1
+                ),
+            ));
+        }
+        Ok(Self::new(case, &config))
     }
 
     /// The elevation above the still level from Γ at [`Self::points`].

@@ -4,8 +4,9 @@
 //! - `E_k = Σ m_i |u_i|²/2`, `E_p = -Σ m_i g·x_i`, `E_c = Σ m_i c0² [ln(ρ_i/ρ0) + ρ0/ρ_i - 1]`
 //!   over fluid particles. With K = 0 and δ = 0, `E_k + E_p + E_c` is conserved by the
 //!   semi-discrete equations; otherwise it changes by `∫ (P_V + P_D) dt`.
-//! - Probes interpolate the fluid pressure with a Shepard-normalised kernel sum,
-//!   `p(x) = Σ_f p_f W(x - x_f) V_f / Σ_f W(x - x_f) V_f` (0 where no fluid is in reach).
+//! - Probes interpolate the fluid's pressure, velocity and density with a
+//!   Shepard-normalised kernel sum, `p(x) = Σ_f p_f W(x - x_f) V_f / Σ_f W(x - x_f) V_f`,
+//!   `V_f = m_f/ρ_f` (none where no fluid is in reach).
 //! - Face sensors on the walls, averaged and low-pass filtered ([`sensors`]).
 //! - Wave gauges: the free surface's elevation on vertical lines ([`gauges`]).
 //! - The stability guard (`guard`) and the count of fluid inside walls (`crossings`).
@@ -27,7 +28,7 @@ use crate::neighbours::NeighbourList;
 use crate::particles::blocks::sum_in_blocks;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
-use crate::scheme::model::Model;
+use crate::physics::kernel::Smoothing;
 use rayon::prelude::*;
 
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -91,21 +92,21 @@ pub fn max_density_variation<const D: usize>(p: &Particles<D>, rho0: f64) -> f64
 /// Calls `f(j, W(x - x_j) V_j)` for every fluid particle `j` within the kernel support
 /// of `point`.
 fn for_fluid_near<const D: usize>(
-    model: &dyn Model<D>,
+    kernel: &(impl Smoothing + ?Sized),
     p: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
     point: &Vector<D>,
     mut f: impl FnMut(usize, f64),
 ) {
-    let r_max = model.support_radius();
+    let r_max = kernel.support_radius();
     list.for_candidates(point, |j| {
         if p.kind[j] != Kind::Fluid {
             return;
         }
         let r = domain.separation(point, &p.x[j]).norm();
         if r < r_max {
-            f(j, model.w(r) * p.mass[j] / p.rho[j]);
+            f(j, kernel.w(r) * p.mass[j] / p.rho[j]);
         }
     });
 }
@@ -114,34 +115,46 @@ fn for_fluid_near<const D: usize>(
 /// over the fluid within the kernel support; `None` where no fluid is in reach (a dry
 /// point has no SPH pressure, which is not the same as zero pressure).
 pub fn probe_pressure<const D: usize>(
-    model: &dyn Model<D>,
+    kernel: &(impl Smoothing + ?Sized),
     p: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
     point: &Vector<D>,
 ) -> Option<f64> {
-    shepard(model, p, list, domain, point, |j| [p.p[j]]).map(|[v]| v)
+    shepard(kernel, p, list, domain, point, |j| [p.p[j]]).map(|[v]| v)
 }
 
 /// Shepard-interpolated fluid velocity at `point`, `Σ_j u_j W_ij V_j / Σ_j W_ij V_j`;
 /// `None` where no fluid is in reach.
 pub fn probe_velocity<const D: usize>(
-    model: &dyn Model<D>,
+    kernel: &(impl Smoothing + ?Sized),
     p: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
     point: &Vector<D>,
 ) -> Option<Vector<D>> {
-    let u = shepard(model, p, list, domain, point, |j| {
+    let u = shepard(kernel, p, list, domain, point, |j| {
         std::array::from_fn(|d| p.u[j][d])
     });
     u.map(|u: [f64; D]| Vector::from(u))
 }
 
+/// Shepard-interpolated fluid density at `point`, `Σ_j ρ_j W_ij V_j / Σ_j W_ij V_j`;
+/// `None` where no fluid is in reach.
+pub fn probe_density<const D: usize>(
+    kernel: &(impl Smoothing + ?Sized),
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+) -> Option<f64> {
+    shepard(kernel, p, list, domain, point, |j| [p.rho[j]]).map(|[v]| v)
+}
+
 /// `Σ_j f_j W_ij V_j / Σ_j W_ij V_j` over the fluid within the kernel support of
 /// `point`; `None` where none is.
 fn shepard<const D: usize, const N: usize>(
-    model: &dyn Model<D>,
+    kernel: &(impl Smoothing + ?Sized),
     p: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
@@ -149,7 +162,7 @@ fn shepard<const D: usize, const N: usize>(
     f: impl Fn(usize) -> [f64; N],
 ) -> Option<[f64; N]> {
     let (mut num, mut den) = ([0.0; N], 0.0);
-    for_fluid_near(model, p, list, domain, point, |j, wv| {
+    for_fluid_near(kernel, p, list, domain, point, |j, wv| {
         for (n, v) in num.iter_mut().zip(f(j)) {
             *n += v * wv;
         }
@@ -161,14 +174,14 @@ fn shepard<const D: usize, const N: usize>(
 /// The fluid's kernel sum `Γ(x) = Σ_f W(x - x_f) V_f` at `point` (0 where no fluid is
 /// in reach).
 pub fn fluid_fraction<const D: usize>(
-    model: &dyn Model<D>,
+    kernel: &(impl Smoothing + ?Sized),
     p: &Particles<D>,
     list: &NeighbourList<D>,
     domain: &Domain<D>,
     point: &Vector<D>,
 ) -> f64 {
     let mut sum = 0.0;
-    for_fluid_near(model, p, list, domain, point, |_, wv| sum += wv);
+    for_fluid_near(kernel, p, list, domain, point, |_, wv| sum += wv);
     sum
 }
 

@@ -72,7 +72,6 @@ fn write_h5<const D: usize>(
         vector("shifting_velocity", v)?;
     }
     crate::io::output::snapshot::write_scalars(&file, p, packing)?;
-    (packing.create::<f64>(&file, "mass", n, 1)?).write_raw(&p.mass)?;
     (packing.create::<u8>(&file, "case_toml", c.case_toml.len(), 1)?)
         .write_raw(c.case_toml.as_bytes())?;
     let scalars = [

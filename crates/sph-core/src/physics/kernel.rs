@@ -63,6 +63,37 @@ impl KernelChoice {
             KernelChoice::Gaussian => Gaussian::SUPPORT,
         }
     }
+
+    /// The kernel with smoothing length `h` in `dim` dimensions behind a trait object,
+    /// for code outside the pair loops (reading snapshots back), where an indirect call
+    /// per evaluation costs nothing that matters.
+    pub fn with_length(self, h: f64, dim: usize) -> Box<dyn Smoothing> {
+        match self {
+            KernelChoice::WendlandC2 => Box::new(WendlandC2::new(h, dim)),
+            KernelChoice::WendlandC4 => Box::new(WendlandC4::new(h, dim)),
+            KernelChoice::CubicSpline => Box::new(CubicSpline::new(h, dim)),
+            KernelChoice::QuinticSpline => Box::new(QuinticSpline::new(h, dim)),
+            KernelChoice::Gaussian => Box::new(Gaussian::new(h, dim)),
+        }
+    }
+}
+
+/// What interpolation at a point needs of a kernel: `W(r)` and its support radius. A
+/// scheme's model provides it, and so does every [`Kernel`].
+pub trait Smoothing: Send + Sync {
+    /// `W(r)`; zero for `r >= R`.
+    fn w(&self, r: f64) -> f64;
+    /// The support radius R.
+    fn support_radius(&self) -> f64;
+}
+
+impl<K: Kernel> Smoothing for K {
+    fn w(&self, r: f64) -> f64 {
+        Kernel::w(self, r)
+    }
+    fn support_radius(&self) -> f64 {
+        self.radius()
+    }
 }
 
 /// `α = a_dim / h^dim`, with `a = (a_2d, a_3d)`.

@@ -11,6 +11,7 @@ use crate::neighbours::NeighbourList;
 use crate::particles::{Kind, Particles, Vector};
 use crate::physics::eos::LinearEos;
 use crate::physics::free_surface::FreeSurface;
+use crate::physics::kernel::Smoothing;
 use crate::physics::shifting::Shift;
 use rayon::prelude::*;
 
@@ -189,6 +190,15 @@ pub trait Model<const D: usize>: Send + Sync {
     /// the limits of Δt; zero when the scheme adds none.
     fn diffusivities(&self) -> Diffusivities {
         Diffusivities::default()
+    }
+}
+
+impl<const D: usize> Smoothing for dyn Model<D> + '_ {
+    fn w(&self, r: f64) -> f64 {
+        Model::w(self, r)
+    }
+    fn support_radius(&self) -> f64 {
+        Model::support_radius(self)
     }
 }
 

@@ -4,7 +4,8 @@
 
 use super::Simulation;
 use crate::diagnostics;
-use crate::error::{Result, SphError};
+use crate::diagnostics::gauges::Gauge;
+use crate::error::Result;
 use crate::geometry;
 use crate::particles::Vector;
 
@@ -81,24 +82,7 @@ impl<const D: usize> Simulation<D> {
     pub fn wave_elevations(&self, positions: &[Vec<f64>]) -> Result<Vec<f64>> {
         let mut out = Vec::with_capacity(positions.len());
         for (k, position) in positions.iter().enumerate() {
-            let config = crate::case::GaugeConfig {
-                name: format!("positions[{k}]"),
-                position: position.clone(),
-                bottom: None,
-                top: None,
-            };
-            let finite = position.iter().all(|v| v.is_finite());
-            if position.len() + 1 != D || !finite || self.case().gauge_line(&config).is_none() {
-                return Err(SphError::invalid(
-                    format!("positions[{k}]"),
-                    format!("{position:?}"),
-                    format!(
-                        "{} coordinate(s) of a vertical line within a [domain] or [[tank]]",
-                        D - 1
-                    ),
-                ));
-            }
-            let gauge = crate::diagnostics::gauges::Gauge::<D>::new(self.case(), &config);
+            let gauge = Gauge::<D>::at(self.case(), position, &format!("positions[{k}]"))?;
             out.push(gauge.elevation(&self.fluid_fractions(&gauge.points)));
         }
         Ok(out)

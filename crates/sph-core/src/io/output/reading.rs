@@ -27,7 +27,7 @@ pub struct Snapshot {
 }
 
 const VECTORS: [&str; 4] = ["position", "velocity", "shifting_velocity", "normal"];
-const SCALARS: [&str; 3] = ["density", "pressure", "lambda"];
+const SCALARS: [&str; 4] = ["density", "pressure", "mass", "lambda"];
 const BYTES: [&str; 2] = ["kind", "free_surface"];
 
 /// Reads the snapshot `path` (a file of a run folder or of `write_indexed_snapshot`).

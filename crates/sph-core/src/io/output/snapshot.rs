@@ -2,7 +2,7 @@
 //! ParaView and VisIt open as a time series.
 //!
 //! Each snapshot holds `position`, `velocity` (N×3, z = 0 in 2D), `density`,
-//! `pressure`, `kind` (0 fluid, 1 wall), `id`, and `connectivity` (0..N-1): the index
+//! `pressure`, `mass`, `kind` (0 fluid, 1 wall), `id`, and `connectivity` (0..N-1): the index
 //! describes the particles as N vertex cells through it (`Polyvertex`, one node per
 //! element). Without the connectivity, ParaView's Xdmf3 reader (its default for
 //! `.xmf`) builds the points but no cells, and its default Surface view is empty.
@@ -55,6 +55,8 @@ pub(super) struct Entry {
     pub surface: bool,
     /// Whether the file holds the shifting velocity.
     pub shift: bool,
+    /// Whether the file holds the masses (older snapshots do not).
+    pub mass: bool,
 }
 
 impl Entry {
@@ -65,6 +67,7 @@ impl Entry {
             n,
             surface: extras.surface.is_some(),
             shift: extras.shift_velocity.is_some(),
+            mass: true,
         }
     }
 
@@ -77,6 +80,7 @@ impl Entry {
                 n: h5.dataset("id")?.size(),
                 surface: h5.dataset("free_surface").is_ok(),
                 shift: h5.dataset("shifting_velocity").is_ok(),
+                mass: h5.dataset("mass").is_ok(),
                 file,
             })
         };
@@ -217,14 +221,15 @@ pub(crate) fn write_creator(file: &hdf5::File) -> hdf5::Result<()> {
         .write_scalar(&creator)
 }
 
-/// Writes the per-particle `density`, `pressure`, `kind` (0 fluid, 1 wall) and `id`.
+/// Writes the per-particle `density`, `pressure`, `mass`, `kind` (0 fluid, 1 wall) and
+/// `id`.
 pub(crate) fn write_scalars<const D: usize>(
     file: &hdf5::File,
     p: &Particles<D>,
     c: Compression,
 ) -> hdf5::Result<()> {
     let n = p.len();
-    for (name, v) in [("density", &p.rho), ("pressure", &p.p)] {
+    for (name, v) in [("density", &p.rho), ("pressure", &p.p), ("mass", &p.mass)] {
         c.create::<f64>(file, name, n, 1)?.write_raw(v)?;
     }
     let kind: Vec<u8> = p.kind.iter().map(|&k| k as u8).collect();
@@ -277,6 +282,9 @@ fn grid(e: &Entry) -> String {
     s += &vector("velocity");
     s += &scalar("density", "Float", 8);
     s += &scalar("pressure", "Float", 8);
+    if e.mass {
+        s += &scalar("mass", "Float", 8);
+    }
     s += &scalar("kind", "UChar", 1);
     s += &scalar("id", "UInt", 4);
     if e.shift {

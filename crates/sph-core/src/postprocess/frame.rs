@@ -1,0 +1,117 @@
+//! One snapshot made ready for interpolation at points: its fluid particles (the
+//! probes read no wall) sorted into the cells of a grid, as a run's neighbour search
+//! sorts them, so that the in-run probe and gauge rules of [`crate::diagnostics`] read
+//! it as they read the running simulation.
+//!
+//! The interpolation needs each particle's volume `V = m/ρ`: snapshots hold `mass`
+//! since the measure tool exists; older ones are refused with the reason.
+
+use crate::case::Case;
+use crate::diagnostics;
+use crate::domain::Domain;
+use crate::error::{Result, SphError};
+use crate::io::output::reading::{read_snapshot, Field, Snapshot};
+use crate::neighbours::NeighbourList;
+use crate::particles::{Kind, Particles, Vector};
+use crate::physics::kernel::Smoothing;
+use std::path::Path;
+
+/// A snapshot's fluid, sorted for point queries.
+pub struct Frame<const D: usize> {
+    pub time: f64,
+    pub step: u64,
+    fluid: Particles<D>,
+    /// The cell grid only (no neighbour rows: points are not particles).
+    cells: NeighbourList<D>,
+    domain: Domain<D>,
+}
+
+impl<const D: usize> Frame<D> {
+    /// Reads the snapshot `path` of a run of `case`, for a kernel of support `support`.
+    pub fn read(path: &Path, case: &Case, support: f64) -> Result<Self> {
+        let snapshot = read_snapshot(path)?;
+        if snapshot.dimension != D {
+            return Err(SphError::output(
+                path,
+                format!("a {}D snapshot in a run of a {D}D case", snapshot.dimension),
+            ));
+        }
+        let mut fluid = fluid_of(&snapshot).map_err(|e| SphError::output(path, e))?;
+        let domain = domain_of(case, &fluid);
+        let (cells, _) = NeighbourList::build_rows(&mut fluid, &domain, support, 0.0, |_, _| false);
+        Ok(Self {
+            time: snapshot.time,
+            step: snapshot.step,
+            fluid,
+            cells,
+            domain,
+        })
+    }
+
+    /// Shepard-interpolated pressure at `x` ([`diagnostics::probe_pressure`]).
+    pub fn pressure(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<f64> {
+        diagnostics::probe_pressure(kernel, &self.fluid, &self.cells, &self.domain, x)
+    }
+
+    /// Shepard-interpolated velocity at `x` ([`diagnostics::probe_velocity`]).
+    pub fn velocity(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<Vector<D>> {
+        diagnostics::probe_velocity(kernel, &self.fluid, &self.cells, &self.domain, x)
+    }
+
+    /// Shepard-interpolated density at `x` ([`diagnostics::probe_density`]).
+    pub fn density(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<f64> {
+        diagnostics::probe_density(kernel, &self.fluid, &self.cells, &self.domain, x)
+    }
+
+    /// The fluid's kernel sum Γ at `x` ([`diagnostics::fluid_fraction`]).
+    pub fn fluid_fraction(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> f64 {
+        diagnostics::fluid_fraction(kernel, &self.fluid, &self.cells, &self.domain, x)
+    }
+}
+
+/// The fluid particles of `snapshot` with the fields the probes read.
+fn fluid_of<const D: usize>(snapshot: &Snapshot) -> std::result::Result<Particles<D>, String> {
+    let field = |name: &str| snapshot.fields.iter().find(|f| f.0 == name).map(|f| &f.1);
+    let floats = |name: &str| match field(name) {
+        Some(Field::Float { values, .. }) => Ok(values.as_slice()),
+        _ => Err(format!(
+            "the snapshot has no `{name}` field{}",
+            if name == "mass" {
+                " (written before snapshots stored masses: run the case again to measure it)"
+            } else {
+                ""
+            }
+        )),
+    };
+    let (x, u) = (floats("position")?, floats("velocity")?);
+    let (rho, p, mass) = (floats("density")?, floats("pressure")?, floats("mass")?);
+    let Some(Field::Byte(kind)) = field("kind") else {
+        return Err("the snapshot has no `kind` field".into());
+    };
+    let vector = |v: &[f64], i: usize| Vector::<D>::from_column_slice(&v[i * D..(i + 1) * D]);
+    let mut fluid = Particles::default();
+    for i in (0..kind.len()).filter(|&i| kind[i] == Kind::Fluid as u8) {
+        fluid.push(Kind::Fluid, vector(x, i), vector(u, i), rho[i], mass[i]);
+        let last = fluid.len() - 1;
+        fluid.p[last] = p[i];
+    }
+    Ok(fluid)
+}
+
+/// The case's `[domain]` (its periodic axes wrap distances); without one, distances do
+/// not wrap and any box holding the fluid serves.
+fn domain_of<const D: usize>(case: &Case, fluid: &Particles<D>) -> Domain<D> {
+    if let Some(d) = &case.domain {
+        let corner = |v: &[f64]| Vector::<D>::from_fn(|k, _| v[k]);
+        let periodic = std::array::from_fn(|k| d.is_periodic(k));
+        return Domain::new(corner(&d.lo), corner(&d.hi), periodic);
+    }
+    if fluid.is_empty() {
+        return Domain::new(Vector::zeros(), Vector::repeat(1.0), [false; D]);
+    }
+    let (lo, hi) = fluid.x.iter().fold(
+        (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN)),
+        |(lo, hi), x| (lo.inf(x), hi.sup(x)),
+    );
+    Domain::new(lo, hi, [false; D])
+}

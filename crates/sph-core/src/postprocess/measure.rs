@@ -1,0 +1,273 @@
+//! The measure tool: pressure, velocity and density interpolated at points, and the
+//! free-surface elevation on vertical lines, from every snapshot of a run folder.
+//!
+//! Each value follows the in-run rule exactly ([`crate::diagnostics`]): the
+//! Shepard-normalised kernel sum over the fluid, `f(x) = Σ_j f_j W(x - x_j) V_j /
+//! Σ_j W(x - x_j) V_j` with `V_j = m_j/ρ_j`, and the gauges' crossing of `Γ = ½` on a
+//! vertical line. A point with no fluid within the kernel support (dry, or inside a
+//! wall) has no value: NaN, an empty reading and not a zero. A dry line reads its
+//! bottom, as an in-run gauge does.
+
+use super::frame::Frame;
+use super::points::MAX_POINTS;
+use super::RunFolder;
+use crate::diagnostics::gauges::Gauge;
+use crate::error::{Result, SphError};
+use crate::io::output::atomic;
+use crate::particles::Vector;
+use crate::physics::kernel::Smoothing;
+use rayon::prelude::*;
+use std::path::Path;
+
+/// How the header of every CSV file the measure tool writes starts (the only files it
+/// replaces): the clock, then the first point's or line's column.
+const CSV_MARKS: [&str; 2] = ["time,step,point0_", "time,step,line0_"];
+
+/// The most values one measurement holds (snapshots × points × components): 2 GB.
+const MAX_VALUES: usize = 250_000_000;
+
+/// A field read at points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    Pressure,
+    Velocity,
+    Density,
+}
+
+impl Quantity {
+    pub const ALL: [Quantity; 3] = [Quantity::Pressure, Quantity::Velocity, Quantity::Density];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::Pressure => "pressure",
+            Quantity::Velocity => "velocity",
+            Quantity::Density => "density",
+        }
+    }
+
+    /// The quantity called `name`.
+    pub fn parse(name: &str) -> Result<Self> {
+        (Self::ALL.into_iter().find(|q| q.name() == name))
+            .ok_or_else(|| SphError::invalid("fields", name, "pressure, velocity or density"))
+    }
+
+    fn components(self, dimension: usize) -> usize {
+        match self {
+            Quantity::Velocity => dimension,
+            _ => 1,
+        }
+    }
+}
+
+/// What to measure.
+#[derive(Debug, Clone, Default)]
+pub struct Request {
+    /// The points the quantities are read at, each with the case's dimension.
+    pub points: Vec<Vec<f64>>,
+    pub quantities: Vec<Quantity>,
+    /// The vertical lines the elevation is read on: x in 2D, (x, y) in 3D.
+    pub elevations: Vec<Vec<f64>>,
+}
+
+/// One measured quantity: `values[(s * count + k) * components + c]` is component c
+/// at point (or line) k in snapshot s.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// `pressure`, `velocity`, `density` or `elevation`.
+    pub name: &'static str,
+    /// Points (or lines) per snapshot.
+    pub count: usize,
+    pub components: usize,
+    pub values: Vec<f64>,
+}
+
+/// The measured series, a row per snapshot.
+#[derive(Debug, Clone)]
+pub struct Measurement {
+    pub dimension: usize,
+    /// Each snapshot's time \[s\] and step.
+    pub times: Vec<f64>,
+    pub steps: Vec<u64>,
+    pub request: Request,
+    pub series: Vec<Series>,
+}
+
+/// Measures `request` at every snapshot of `folder`.
+pub fn measure(folder: &RunFolder, request: &Request) -> Result<Measurement> {
+    match folder.case.dimension {
+        2 => measure_in::<2>(folder, request),
+        _ => measure_in::<3>(folder, request),
+    }
+}
+
+fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<Measurement> {
+    let case = &folder.case;
+    let points = points_of::<D>(&request.points)?;
+    let gauges = (request.elevations.iter().enumerate())
+        .map(|(k, x)| Gauge::<D>::at(case, x, &format!("elevation[{k}]")))
+        .collect::<Result<Vec<_>>>()?;
+    let per_snapshot: usize = (request.quantities.iter())
+        .map(|q| q.components(D) * points.len())
+        .sum::<usize>()
+        + gauges.len();
+    if per_snapshot.saturating_mul(folder.snapshots.len()) > MAX_VALUES {
+        return Err(SphError::invalid(
+            "points",
+            format!(
+                "{per_snapshot} values at each of {} snapshots",
+                folder.snapshots.len()
+            ),
+            format!("at most {MAX_VALUES} values in all (fewer points or fields)"),
+        ));
+    }
+    let kernel = case.particles.kernel.with_length(case.h(), D);
+    let mut series: Vec<Series> = (request.quantities.iter())
+        .map(|q| Series {
+            name: q.name(),
+            count: points.len(),
+            components: q.components(D),
+            values: Vec::new(),
+        })
+        .collect();
+    if !gauges.is_empty() {
+        series.push(Series {
+            name: "elevation",
+            count: gauges.len(),
+            components: 1,
+            values: Vec::new(),
+        });
+    }
+    let (mut times, mut steps) = (Vec::new(), Vec::new());
+    for (path, _) in &folder.snapshots {
+        let frame = Frame::<D>::read(path, case, kernel.support_radius())?;
+        let kernel = kernel.as_ref();
+        for (s, q) in series.iter_mut().zip(&request.quantities) {
+            s.values.extend(read_points(&frame, kernel, *q, &points));
+        }
+        if let Some(s) = series.last_mut().filter(|_| !gauges.is_empty()) {
+            s.values.extend(
+                gauges
+                    .par_iter()
+                    .map(|g| {
+                        let gamma: Vec<f64> = (g.points.iter())
+                            .map(|x| frame.fluid_fraction(kernel, x))
+                            .collect();
+                        g.elevation(&gamma)
+                    })
+                    .collect::<Vec<_>>(),
+            );
+        }
+        times.push(frame.time);
+        steps.push(frame.step);
+    }
+    Ok(Measurement {
+        dimension: D,
+        times,
+        steps,
+        request: request.clone(),
+        series,
+    })
+}
+
+/// The request's points as vectors, each checked: D finite coordinates.
+fn points_of<const D: usize>(points: &[Vec<f64>]) -> Result<Vec<Vector<D>>> {
+    if points.len() > MAX_POINTS {
+        return Err(SphError::invalid(
+            "points",
+            format!("{} points", points.len()),
+            format!("at most {MAX_POINTS}"),
+        ));
+    }
+    (points.iter().enumerate())
+        .map(|(k, x)| {
+            if x.len() != D || !x.iter().all(|v| v.is_finite()) {
+                return Err(SphError::invalid(
+                    format!("points[{k}]"),
+                    format!("{x:?}"),
+                    format!("{D} finite coordinates (the case is {D}D)"),
+                ));
+            }
+            Ok(Vector::<D>::from_column_slice(x))
+        })
+        .collect()
+}
+
+/// `q` at each of `points`, its components in a row; NaN where no fluid is in reach.
+fn read_points<const D: usize>(
+    frame: &Frame<D>,
+    kernel: &dyn Smoothing,
+    q: Quantity,
+    points: &[Vector<D>],
+) -> Vec<f64> {
+    let rows: Vec<Vec<f64>> = points
+        .par_iter()
+        .map(|x| match q {
+            Quantity::Pressure => vec![frame.pressure(kernel, x).unwrap_or(f64::NAN)],
+            Quantity::Density => vec![frame.density(kernel, x).unwrap_or(f64::NAN)],
+            Quantity::Velocity => match frame.velocity(kernel, x) {
+                Some(u) => u.iter().copied().collect(),
+                None => vec![f64::NAN; D],
+            },
+        })
+        .collect();
+    rows.concat()
+}
+
+impl Measurement {
+    /// The CSV columns: `time`, `step`, then per quantity and point k `point<k>_pressure`,
+    /// `point<k>_u` … `point<k>_density`, then `line<k>_elevation`.
+    pub fn header(&self) -> Vec<String> {
+        let components = &["u", "v", "w"][..self.dimension];
+        let mut out = vec!["time".to_string(), "step".to_string()];
+        for s in &self.series {
+            for k in 0..s.count {
+                match s.name {
+                    "velocity" => out.extend(components.iter().map(|c| format!("point{k}_{c}"))),
+                    "elevation" => out.push(format!("line{k}_elevation")),
+                    name => out.push(format!("point{k}_{name}")),
+                }
+            }
+        }
+        out
+    }
+
+    /// The measurement as CSV, as `timeseries.csv` is laid out: the header, then a row
+    /// per snapshot (full precision; NaN where a point had no fluid). The points
+    /// themselves are the request's, in column order.
+    pub fn to_csv(&self) -> String {
+        let mut out = self.header().join(",") + "\n";
+        for (s, (time, step)) in self.times.iter().zip(&self.steps).enumerate() {
+            let mut row = vec![format!("{time:e}"), step.to_string()];
+            for series in &self.series {
+                let width = series.count * series.components;
+                let values = &series.values[s * width..(s + 1) * width];
+                row.extend(values.iter().map(|v| format!("{v:e}")));
+            }
+            out += &(row.join(",") + "\n");
+        }
+        out
+    }
+
+    /// Writes [`Self::to_csv`] to `path` atomically. An existing file is refused unless
+    /// `overwrite`, and even then only a file the measure tool wrote is replaced.
+    pub fn write_csv(&self, path: &Path, overwrite: bool) -> Result<()> {
+        if path.exists() {
+            let head = std::fs::read(path).unwrap_or_default();
+            let ours = CSV_MARKS.iter().any(|m| head.starts_with(m.as_bytes()));
+            let why = match (overwrite, ours) {
+                (false, _) => Some(
+                    "file exists; choose another name, or pass --force (overwrite=True in Python)",
+                ),
+                (true, false) => Some(
+                    "file exists and was not written by the measure tool; it is never overwritten",
+                ),
+                (true, true) => None,
+            };
+            if let Some(why) = why {
+                return Err(SphError::output(path, why));
+            }
+        }
+        let text = self.to_csv();
+        atomic::write(path, |tmp| std::fs::write(tmp, &text))
+    }
+}

@@ -12,13 +12,13 @@ All quantities are SI. Arrays are copies in particle-id order (row i is always t
 particle created i-th), so they can be compared across steps and edited freely.
 
 ``sim.run(out="folder")`` writes the command line's run folder, ``ds.load("folder")``
-reads one back, ``deltasph.plot`` draws it, ``ds.case_schema()`` is the case file's
+reads one back, ``ds.measure("folder", ...)`` reads fields at points from its snapshots, ``deltasph.plot`` draws it, ``ds.case_schema()`` is the case file's
 JSON Schema for editors.
 """
 
 from ._core import Simulation, __version__, case_schema, regular_wave
 from .errors import ConfigError, ConfigKeyError, InstabilityError
-from .runs import RunFolder, Snapshot, load
+from .runs import Measurement, RunFolder, Snapshot, load, measure
 
 #: Values of ``Simulation.kind``.
 FLUID = 0
@@ -31,10 +31,12 @@ __all__ = [
     "ConfigError",
     "ConfigKeyError",
     "InstabilityError",
+    "Measurement",
     "RunFolder",
     "case_schema",
     "regular_wave",
     "Snapshot",
     "load",
+    "measure",
     "__version__",
 ]

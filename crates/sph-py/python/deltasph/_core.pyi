@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
-__all__ = ["Simulation", "read_snapshot", "cli", "case_schema", "regular_wave", "__version__"]
+__all__ = ["Simulation", "read_snapshot", "measure", "cli", "case_schema", "regular_wave", "__version__"]
 
 _Progress = Union[bool, None, Callable[[float, int], object]]
 
@@ -173,6 +173,17 @@ class Simulation:
 
 def read_snapshot(path: Union[str, PathLike[str]]) -> tuple[float, int, dict[str, npt.NDArray[Any]]]:
     """``(time, step, fields)`` of a snapshot file, rows in the file's order."""
+
+def measure(
+    run: Union[str, PathLike[str]],
+    points: list[list[float]],
+    fields: list[str],
+    elevations: list[list[float]],
+    out: Optional[Union[str, PathLike[str]]] = None,
+    overwrite: bool = False,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.uint64], dict[str, npt.NDArray[np.float64]]]:
+    """``(times, steps, series)`` measured at ``points`` and on the vertical lines
+    ``elevations`` in every snapshot of the run folder ``run``; NaN where dry."""
 
 def cli(args: list[str]) -> int:
     """Runs the ``deltasph`` command line with ``args``; returns its exit code."""

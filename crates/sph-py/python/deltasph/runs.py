@@ -8,6 +8,11 @@ A run folder is what ``sph-cli run`` (or ``Simulation.run(out=...)``) writes::
     snap = run.snapshot(-1)    # the last snapshot; run.at(0.5) the one nearest 0.5 s
     snap["pressure"], snap["position"]      # (N,) and (N, D), rows in id order
     run.series["time"], run.series["probe0_pressure"]
+
+and measured again at any points (the in-run probes' and gauges' rules)::
+
+    m = ds.measure("dam_break_out", line=([3.2, 0.0], [3.2, 0.4], 9), elevation=[1.0, 3.0])
+    m.times, m.pressure        # (S,) and (S, 9): a row per snapshot
 """
 
 from __future__ import annotations
@@ -17,7 +22,7 @@ import os
 import pathlib
 import sys
 import xml.etree.ElementTree as ElementTree
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -31,11 +36,13 @@ else:  # Python 3.9 and 3.10
 
 #: A file or folder name.
 PathLike = Union[str, "os.PathLike[str]"]
+#: Numbers as a nested sequence or an array.
+ArrayLike = Union[Sequence[Any], npt.NDArray[Any]]
 
 
 class Snapshot(Dict[str, npt.NDArray[Any]]):
     """The fields of one snapshot by name (``position``, ``velocity`` (N, D),
-    ``density``, ``pressure``, ``kind``, ``id`` (N,), and the optional ``free_surface``,
+    ``density``, ``pressure``, ``mass``, ``kind``, ``id`` (N,), and the optional ``free_surface``,
     ``normal``, ``lambda``, ``shifting_velocity``), rows sorted by particle id; with
     ``time`` [s], ``step`` and ``path``."""
 
@@ -116,6 +123,10 @@ class RunFolder:
         with open(self.path / "case.toml", "rb") as f:
             return _toml.load(f)
 
+    def measure(self, points: Optional[ArrayLike] = None, **options: Any) -> "Measurement":
+        """:func:`measure` on this run folder."""
+        return measure(self.path, points, **options)
+
     @property
     def restart(self) -> Optional[pathlib.Path]:
         """The newest restart file (for ``Simulation.from_restart``), or None."""
@@ -139,3 +150,75 @@ def _index(path: pathlib.Path) -> Tuple[List[str], npt.NDArray[np.float64]]:
 def load(path: PathLike) -> RunFolder:
     """The run folder ``path`` (see :class:`RunFolder`)."""
     return RunFolder(path)
+
+
+class Measurement:
+    """What :func:`measure` read from each snapshot of a run: ``times`` [s] and
+    ``steps`` (S,), the ``points`` (P, D) and elevation ``lines`` (G, D - 1) asked for,
+    and an array per field: ``pressure`` and ``density`` (S, P), ``velocity`` (S, P, D),
+    ``elevation`` (S, G), above ``diagnostics.still_level``. A point with no fluid
+    within the kernel support (dry, or inside a wall) reads NaN; a dry line reads its
+    bottom, as an in-run gauge does."""
+
+    def __init__(self, times: npt.NDArray[np.float64], steps: npt.NDArray[np.uint64],
+                 points: npt.NDArray[np.float64], lines: npt.NDArray[np.float64],
+                 series: Dict[str, npt.NDArray[np.float64]]) -> None:
+        self.times, self.steps, self.points, self.lines = times, steps, points, lines
+        self.series = series
+
+    def __getattr__(self, name: str) -> npt.NDArray[np.float64]:
+        series = self.__dict__.get("series", {})
+        if name in series:
+            return series[name]  # type: ignore[no-any-return]
+        raise AttributeError(
+            f"no {name!r} measured (measured: {', '.join(sorted(series)) or 'nothing'})")
+
+    def __repr__(self) -> str:
+        return (f"Measurement({len(self.times)} snapshots, {len(self.points)} points, "
+                f"{len(self.lines)} lines, fields {sorted(self.series)})")
+
+
+def measure(run: PathLike, points: Optional[ArrayLike] = None, *,
+            line: Optional[Tuple[ArrayLike, ArrayLike, int]] = None,
+            grid: Optional[Tuple[ArrayLike, ArrayLike, ArrayLike]] = None,
+            elevation: Optional[ArrayLike] = None,
+            fields: Sequence[str] = ("pressure",),
+            out: Optional[PathLike] = None, overwrite: bool = False) -> Measurement:
+    """Reads ``fields`` (``"pressure"``, ``"velocity"``, ``"density"``) at points, and the
+    free-surface elevation on vertical lines, from every snapshot of the run folder
+    ``run``, as ``sph-cli measure`` does (see :class:`Measurement`).
+
+    The points are ``points`` (P, D), then the ``n`` points of ``line = (a, b, n)`` from
+    ``a`` to ``b`` (ends included), then the nodes of ``grid = (lo, hi, counts)`` (the
+    first axis varying fastest). ``elevation`` lists the lines: x in 2D (a number each),
+    (x, y) in 3D. ``out`` also writes the CSV there (an earlier one replaced only with
+    ``overwrite``, and only if the measure tool wrote it)."""
+    blocks: List[npt.NDArray[np.float64]] = []
+    if points is not None:
+        blocks.append(np.atleast_2d(np.asarray(points, dtype=float)))
+    if line is not None:
+        a, b, n = line
+        if not (isinstance(n, (int, np.integer)) and n >= 2):
+            raise ValueError(f"line = {line}: expected (a, b, n) with n >= 2 points")
+        s = np.linspace(0.0, 1.0, int(n))[:, None]
+        a_, b_ = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+        blocks.append(a_ + s * (b_ - a_))
+    if grid is not None:
+        lo, hi, counts = (np.asarray(v) for v in grid)
+        if not (counts.dtype.kind in "iu" and np.all(counts >= 1)):
+            raise ValueError(f"grid = {grid}: expected (lo, hi, counts), counts >= 1")
+        axes = [np.linspace(l, h, int(c)) for l, h, c in zip(lo, hi, counts)]
+        nodes = np.meshgrid(*axes, indexing="ij")
+        blocks.append(np.stack([n.ravel(order="F") for n in nodes], axis=1))
+    dimension = max((b.shape[1] for b in blocks), default=0)
+    lines = np.asarray([] if elevation is None else elevation, dtype=float)
+    if lines.ndim <= 1:
+        lines = lines.reshape(-1, 1)
+    all_points = np.concatenate(blocks) if blocks else np.zeros((0, dimension))
+    if not len(all_points) and not len(lines):
+        raise ValueError("measure: no points; give points, line, grid or elevation")
+    wanted = list(fields) if len(all_points) else []
+    times, steps, series = _core.measure(
+        str(run), all_points.tolist(), wanted, lines.tolist(),
+        None if out is None else str(out), overwrite)
+    return Measurement(times, steps, all_points, lines, series)

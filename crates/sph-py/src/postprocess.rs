@@ -9,6 +9,13 @@ use sph_core::postprocess::measure::{measure as measure_run, Quantity, Request};
 use sph_core::postprocess::RunFolder;
 use std::path::PathBuf;
 
+/// A measurement as Python gets it: times, steps and the series by name.
+type Measured<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyDict>,
+);
+
 /// Measures ``fields`` at ``points`` and the elevation on the vertical lines at
 /// ``elevations`` in every snapshot of the run folder ``run``: ``(times, steps,
 /// series)``, each series an array (snapshots, points) or (snapshots, points, D) for
@@ -24,11 +31,7 @@ pub fn measure<'py>(
     elevations: Vec<Vec<f64>>,
     out: Option<PathBuf>,
     overwrite: bool,
-) -> PyResult<(
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<u64>>,
-    Bound<'py, PyDict>,
-)> {
+) -> PyResult<Measured<'py>> {
     let quantities = (fields.iter().map(|f| Quantity::parse(f)))
         .collect::<sph_core::Result<Vec<_>>>()
         .map_err(|e| to_py(py, e))?;

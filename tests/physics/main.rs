@@ -16,6 +16,7 @@ mod measure;
 mod moving_bodies;
 mod open_boundaries;
 mod oscillating_cylinder;
+mod sections;
 mod shifting;
 mod taylor_green;
 mod time_integration;

@@ -1,10 +1,12 @@
 //! The measure tool reads a finished run's snapshots as the run read itself: pressure
-//! and velocity at points and the elevation on vertical lines equal the in-run probes
-//! and gauges at the snapshot times (to round-off: the sums run in another order), dry
+//! and velocity at points, the elevation on vertical lines and the flow through
+//! sections equal the in-run probes, gauges and sections at the snapshot times (to round-off: the sums run in another order), dry
 //! points read as dry in both, and the interpolated density and pressure obey the
 //! linear equation of state as the particles do (one set of Shepard weights for all
 //! fields).
 
+use sph_core::case::SectionConfig;
+use sph_core::diagnostics::sections::Section;
 use sph_core::io::output::{with_extras, Output};
 use sph_core::physics::eos::LinearEos;
 use sph_core::postprocess::measure::{measure, Quantity, Request, Series};
@@ -37,16 +39,17 @@ struct InRun<const D: usize> {
     pressure: Vec<Option<f64>>,
     velocity: Vec<Option<Vector<D>>>,
     elevation: Vec<f64>,
+    flow: Vec<[f64; 2]>,
 }
 
 /// Runs the case for `snapshots` snapshots `steps` steps apart into `dir`, and returns
 /// what the run read at `points` and `lines` at each.
 fn run<const D: usize>(
     dir: &std::path::Path,
-    points: &[Vec<f64>],
-    lines: &[Vec<f64>],
+    request: &Request,
     (snapshots, steps): (usize, usize),
 ) -> (Vec<InRun<D>>, LinearEos) {
+    let (points, lines) = (&request.points, &request.elevations);
     let text = case_text(D);
     let mut sim = Simulation::<D>::new(Case::from_toml_str(&text).unwrap()).unwrap();
     let mut output = Output::create(dir, false).unwrap();
@@ -70,6 +73,16 @@ fn run<const D: usize>(
             pressure: sim.probe_pressures(&at),
             velocity: sim.probe_velocities(&at),
             elevation: sim.wave_elevations(lines).unwrap(),
+            flow: (request.sections.iter())
+                .map(|corners| {
+                    let config = SectionConfig {
+                        name: "s".into(),
+                        corners: corners.clone(),
+                    };
+                    let section = Section::<D>::new(&config, sim.case().dx());
+                    section.flow(&sim.flow_densities(&section.points, &section.normal))
+                })
+                .collect(),
         });
     }
     (seen, sim.physics().eos)
@@ -90,14 +103,19 @@ fn same(a: f64, b: Option<f64>, scale: f64, what: &str) {
     }
 }
 
-fn measure_reads_what_the_run_read<const D: usize>(points: Vec<Vec<f64>>, lines: Vec<Vec<f64>>) {
+fn measure_reads_what_the_run_read<const D: usize>(
+    points: Vec<Vec<f64>>,
+    lines: Vec<Vec<f64>>,
+    sections: Vec<Vec<Vec<f64>>>,
+) {
     let dir = std::env::temp_dir().join(format!("measure-{D}d-{}", std::process::id()));
-    let (seen, eos) = run::<D>(&dir, &points, &lines, (3, 40));
     let request = Request {
         points,
         quantities: Quantity::ALL.to_vec(),
         elevations: lines,
+        sections,
     };
+    let (seen, eos) = run::<D>(&dir, &request, (3, 40));
     let folder = RunFolder::open(&dir).unwrap();
     let m = measure(&folder, &request).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
@@ -108,6 +126,10 @@ fn measure_reads_what_the_run_read<const D: usize>(points: Vec<Vec<f64>>, lines:
         series(&m.series, "density"),
     );
     let elevation = series(&m.series, "elevation");
+    let flows = [
+        series(&m.series, "volume_flow"),
+        series(&m.series, "mass_flow"),
+    ];
     let n = request.points.len();
     let mut dry = 0;
     for (s, run) in seen.iter().enumerate() {
@@ -148,6 +170,22 @@ fn measure_reads_what_the_run_read<const D: usize>(points: Vec<Vec<f64>>, lines:
                 &format!("snapshot {s}, line {k} elevation"),
             );
         }
+        for (k, flow) in run.flow.iter().enumerate() {
+            for (c, (series, scale)) in flows.iter().zip([1.0, 1000.0]).enumerate() {
+                let measured = series.values[s * run.flow.len() + k];
+                same(
+                    measured,
+                    Some(flow[c]),
+                    scale,
+                    &format!("snapshot {s}, section {k}"),
+                );
+            }
+            let moving = s > 0 && flow[0].abs() > 1e-3;
+            assert!(
+                s == 0 || moving,
+                "snapshot {s}: the foot carries flow ({flow:?})"
+            );
+        }
     }
     assert!(
         dry > 0 && dry < n * seen.len(),
@@ -167,7 +205,9 @@ fn the_measure_tool_reads_2d_snapshots_as_the_run_read_itself() {
         [0.3, -0.02],
     ];
     let lines = vec![vec![0.1], vec![0.3]];
-    measure_reads_what_the_run_read::<2>(points.map(|p| p.to_vec()).to_vec(), lines);
+    // across the collapsing column's foot, from inside the floor to the air
+    let sections = vec![vec![vec![0.22, -0.02], vec![0.22, 0.4]]];
+    measure_reads_what_the_run_read::<2>(points.map(|p| p.to_vec()).to_vec(), lines, sections);
 }
 
 #[test]
@@ -179,5 +219,11 @@ fn the_measure_tool_reads_3d_snapshots_as_the_run_read_itself() {
         [0.1, 0.1, 0.45],
     ];
     let lines = vec![vec![0.1, 0.1], vec![0.3, 0.05]];
-    measure_reads_what_the_run_read::<3>(points.map(|p| p.to_vec()).to_vec(), lines);
+    let foot = [
+        [0.22, -0.02, -0.02],
+        [0.22, 0.22, -0.02],
+        [0.22, -0.02, 0.4],
+    ];
+    let sections = vec![foot.map(|c| c.to_vec()).to_vec()];
+    measure_reads_what_the_run_read::<3>(points.map(|p| p.to_vec()).to_vec(), lines, sections);
 }

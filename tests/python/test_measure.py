@@ -23,6 +23,7 @@ def run(tmp_path_factory):
     config = example("dam_break_2d", particles__spacing=0.03, time__end=0.1,
                      time__output_interval=0.025)
     config["diagnostics"]["probes"] = POINTS
+    config["diagnostics"]["sections"] = [{"name": "foot", "corners": [[1.25, -0.1], [1.25, 0.7]]}]
     sim = ds.Simulation(config)
     sim.run(out=folder)
     final = {"pressure": sim.probe_pressure(POINTS), "velocity": sim.probe_velocity(POINTS),
@@ -33,7 +34,7 @@ def run(tmp_path_factory):
 def test_measure_reads_what_the_run_read(run):
     folder, final = run
     m = ds.measure(folder, POINTS, fields=["pressure", "velocity", "density"],
-                   elevation=[0.5, 1.5])
+                   elevation=[0.5, 1.5], sections=[[[1.25, -0.1], [1.25, 0.7]]])
     assert m.pressure.shape == (5, 3) and m.velocity.shape == (5, 3, 2)
     assert m.elevation.shape == (5, 2) and m.density.shape == (5, 3)
     np.testing.assert_allclose(m.times, ds.load(folder).times, rtol=1e-9)
@@ -45,6 +46,11 @@ def test_measure_reads_what_the_run_read(run):
                                    rtol=1e-9, atol=1e-9)
     assert np.isnan(m.pressure[:, 2]).all() and np.isnan(m.velocity[:, 2]).all()
     assert not np.isnan(m.pressure[:, :2]).any()
+    np.testing.assert_allclose(m.volume_flow[:, 0], series["foot_volume_flow"][rows],
+                               rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(m.mass_flow[:, 0], series["foot_mass_flow"][rows],
+                               rtol=1e-9, atol=1e-9)
+    assert m.volume_flow[-1, 0] > 0.01, "the collapsing column flows out past x = 1.25"
     # the last snapshot is the simulation's end state, read at full precision
     np.testing.assert_allclose(m.pressure[-1], final["pressure"], rtol=1e-12, atol=1e-9)
     np.testing.assert_allclose(m.velocity[-1], final["velocity"], rtol=1e-12, atol=1e-12)

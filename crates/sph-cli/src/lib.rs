@@ -90,9 +90,10 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Read pressure, velocity or density at points, and the free-surface elevation on
-    /// vertical lines, from every snapshot of a finished run (the rules of the in-run
-    /// probes and gauges; NaN where no fluid is in reach) as CSV: a row per snapshot.
+    /// Read pressure, velocity or density at points, the free-surface elevation on
+    /// vertical lines and the flow through sections, from every snapshot of a finished
+    /// run (the rules of the in-run probes, gauges and sections; NaN where no fluid is
+    /// in reach) as CSV: a row per snapshot.
     Measure(measure::MeasureArgs),
     /// Print the JSON Schema of the case file, for TOML editors (Taplo, Even Better
     /// TOML): save it and start a case file with `#:schema ./case.schema.json`.

@@ -1,5 +1,5 @@
-//! `sph-cli measure`: fields at points and wave elevations read from every snapshot of
-//! a finished run ([`sph_core::postprocess::measure`]), as CSV on standard output or in
+//! `sph-cli measure`: fields at points, wave elevations and flows through sections read
+//! from every snapshot of a finished run ([`sph_core::postprocess::measure`]), as CSV on standard output or in
 //! a file.
 
 use anyhow::Result;
@@ -30,9 +30,20 @@ pub(crate) struct MeasureArgs {
     /// wave gauge reads it (repeatable).
     #[arg(long, value_name = "X[,Y]")]
     elevation: Vec<String>,
+    /// The volume and mass flow through the segment between two corners (2D; flow to
+    /// the right of the first-to-second direction counts positive: a segment drawn
+    /// upwards counts flow in +x) or the parallelogram at the first of three corners
+    /// (3D; normal (c1 - c0) × (c2 - c0)), e.g. `--section 1.0,0 1.0,0.6` (repeatable).
+    #[arg(long, num_args = 2..=3, value_name = "CORNER")]
+    section: Vec<String>,
     /// The fields read at the points: pressure, velocity, density (comma-separated).
     #[arg(long, value_delimiter = ',', default_value = "pressure")]
     fields: Vec<String>,
+    /// Loads on the walls: not recomputed from snapshots (they hold neither the walls'
+    /// extrapolated state nor the moving walls' accelerations that the loads need);
+    /// says where the run recorded them, or how to record them.
+    #[arg(long)]
+    loads: bool,
     /// Write the CSV here instead of standard output.
     #[arg(long, short, value_name = "FILE")]
     out: Option<PathBuf>,
@@ -43,6 +54,9 @@ pub(crate) struct MeasureArgs {
 
 pub(crate) fn run(args: MeasureArgs) -> Result<()> {
     let folder = RunFolder::open(&args.run)?;
+    if args.loads {
+        return Err(loads_message(&folder).into());
+    }
     let mut points = match &args.points {
         Some(file) => points::read_file(file)?,
         None => Vec::new(),
@@ -68,11 +82,25 @@ pub(crate) fn run(args: MeasureArgs) -> Result<()> {
     let elevations = (args.elevation.iter())
         .map(|x| coordinates("--elevation", x))
         .collect::<Result<Vec<_>>>()?;
-    if points.is_empty() && elevations.is_empty() {
+    let dimension = folder.case.dimension;
+    if !args.section.len().is_multiple_of(dimension) {
+        let given = args.section.join(" ");
+        let expected = format!("{dimension} corners per section (the case is {dimension}D)");
+        return Err(SphError::invalid("--section", given, expected).into());
+    }
+    let sections = (args.section.chunks(dimension))
+        .map(|corners| {
+            corners
+                .iter()
+                .map(|c| coordinates("--section", c))
+                .collect()
+        })
+        .collect::<Result<Vec<Vec<Vec<f64>>>>>()?;
+    if points.is_empty() && elevations.is_empty() && sections.is_empty() {
         return Err(SphError::invalid(
             "measure",
             "no points",
-            "--points, --line, --grid or --elevation",
+            "--points, --line, --grid, --elevation or --section",
         )
         .into());
     }
@@ -86,6 +114,7 @@ pub(crate) fn run(args: MeasureArgs) -> Result<()> {
         points,
         quantities,
         elevations,
+        sections,
     };
     let measurement = measure(&folder, &request)?;
     match &args.out {
@@ -114,4 +143,28 @@ fn coordinates(key: &str, text: &str) -> Result<Vec<f64>> {
 fn count(key: &str, text: &str) -> Result<usize> {
     let n: Option<usize> = text.parse().ok().filter(|&n| n >= 1);
     Ok(n.ok_or_else(|| SphError::invalid(key, text, "a whole number of points, at least 1"))?)
+}
+
+/// Why `--loads` reads nothing: where the run's own loads are, or how to record them.
+fn loads_message(folder: &RunFolder) -> SphError {
+    let series = folder.dir.join("timeseries.csv");
+    let header = std::fs::read_to_string(&series).unwrap_or_default();
+    let header = header.lines().next().unwrap_or_default();
+    let recorded: Vec<&str> = (header.split(','))
+        .filter(|c| c.ends_with("_pressure_fx"))
+        .collect();
+    let expected = if recorded.is_empty() {
+        "a run that records them: loads need the wall state of the run itself, which \
+         snapshots do not hold; set `loads = true` under [diagnostics] and run the case \
+         again"
+            .to_string()
+    } else {
+        format!(
+            "the loads the run recorded: columns {} (and the viscous and moment columns \
+             beside them) in {}",
+            recorded.join(", "),
+            series.display()
+        )
+    };
+    SphError::invalid("--loads", "from snapshots", expected)
 }

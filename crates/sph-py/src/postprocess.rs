@@ -16,21 +16,22 @@ type Measured<'py> = (
     Bound<'py, PyDict>,
 );
 
-/// Measures ``fields`` at ``points`` and the elevation on the vertical lines at
-/// ``elevations`` in every snapshot of the run folder ``run``: ``(times, steps,
-/// series)``, each series an array (snapshots, points) or (snapshots, points, D) for
-/// the velocity; NaN where no fluid is in reach. With ``out``, also writes the CSV of
-/// ``sph-cli measure`` there (an earlier one replaced only with ``overwrite``).
+/// Measures ``fields`` at ``points``, the elevation on the vertical lines at
+/// ``elevations`` and the flow through the ``sections`` (their corners) in every
+/// snapshot of the run folder ``run``: ``(times, steps, series)``, each series an array
+/// (snapshots, points) or (snapshots, points, D) for the velocity; NaN where no fluid is
+/// in reach. With ``out = (path, overwrite)``, also writes the CSV of ``sph-cli measure``
+/// there (an earlier one replaced only with ``overwrite``).
 #[pyfunction]
-#[pyo3(signature = (run, points, fields, elevations, out=None, overwrite=false))]
+#[pyo3(signature = (run, points, fields, elevations, sections, out=None))]
 pub fn measure<'py>(
     py: Python<'py>,
     run: PathBuf,
     points: Vec<Vec<f64>>,
     fields: Vec<String>,
     elevations: Vec<Vec<f64>>,
-    out: Option<PathBuf>,
-    overwrite: bool,
+    sections: Vec<Vec<Vec<f64>>>,
+    out: Option<(PathBuf, bool)>,
 ) -> PyResult<Measured<'py>> {
     let quantities = (fields.iter().map(|f| Quantity::parse(f)))
         .collect::<sph_core::Result<Vec<_>>>()
@@ -39,11 +40,12 @@ pub fn measure<'py>(
         points,
         quantities,
         elevations,
+        sections,
     };
     let measured = py.detach(|| {
         let m = measure_run(&RunFolder::open(&run)?, &request)?;
-        if let Some(path) = &out {
-            m.write_csv(path, overwrite)?;
+        if let Some((path, overwrite)) = &out {
+            m.write_csv(path, *overwrite)?;
         }
         Ok(m)
     });

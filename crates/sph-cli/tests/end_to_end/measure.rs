@@ -1,5 +1,5 @@
-//! `sph-cli measure` on a finished run: the probes' columns read again from the
-//! snapshots equal the run's own time series at the snapshot steps (to the series'
+//! `sph-cli measure` on a finished run: the probes' and a section's columns read again
+//! from the snapshots equal the run's own time series at the snapshot steps (to the series'
 //! ten printed digits), and the output file obeys the output-safety rules.
 
 use crate::common::{cli, scratch, small_case};
@@ -21,7 +21,9 @@ fn column(header: &[String], name: &str) -> usize {
 #[test]
 fn measure_reads_the_probes_again_from_the_snapshots() {
     let dir = scratch("measure");
-    let case = small_case(&dir, "");
+    let section =
+        "\n[[diagnostics.sections]]\nname = \"foot\"\ncorners = [[1.3, -0.1], [1.3, 0.7]]\n";
+    let case = small_case(&dir, section);
     // probes in the column, at its collapsing corner, and ahead of the water (dry)
     let text = std::fs::read_to_string(&case).unwrap().replace(
         "probes = [[3.2196, 0.12], [3.2196, 0.16]]",
@@ -40,6 +42,7 @@ fn measure_reads_the_probes_again_from_the_snapshots() {
     let csv = csv.to_str().unwrap();
     let measure = |extra: &[&str]| {
         let mut args = vec!["measure", run, "--points", points, "--elevation", "1.0"];
+        args.extend_from_slice(&["--section", "1.3,-0.1", "1.3,0.7"]);
         args.extend_from_slice(&["--fields", "pressure,velocity"]);
         cli(&[&args[..], extra].concat())
     };
@@ -67,6 +70,14 @@ fn measure_reads_the_probes_again_from_the_snapshots() {
             }
         }
         assert!(row[column(&header, "line0_elevation")] > 0.0);
+        for flow in ["volume_flow", "mass_flow"] {
+            let ours = row[column(&header, &format!("section0_{flow}"))];
+            let theirs = in_run[column(&names, &format!("foot_{flow}"))];
+            assert!(
+                (ours - theirs).abs() <= 1e-9 * theirs.abs().max(1e-3),
+                "{flow}: {ours} {theirs}"
+            );
+        }
     }
     assert_eq!(
         compared,
@@ -120,6 +131,14 @@ fn measure_refuses_bad_points_in_one_line() {
             "fields = temperature",
         ),
         (vec![], "measure = no points"),
+        (
+            vec!["--section", "0.5,0", "0.5,0"],
+            "sections[0] = [[0.5, 0.0], [0.5, 0.0]]: expected corners spanning a segment",
+        ),
+        (
+            vec!["--section", "0,0", "1,0", "2,0"],
+            "--section = 0,0 1,0 2,0: expected 2 corners",
+        ),
     ] {
         let mut all = vec!["measure", run];
         all.extend(args);
@@ -139,4 +158,12 @@ fn measure_refuses_bad_points_in_one_line() {
     ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("not a run folder"), "{err}");
+    let loads = cli(&["measure", run, "--loads"]);
+    let err = String::from_utf8_lossy(&loads.stderr);
+    assert_eq!(loads.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("set `loads = true` under [diagnostics]"),
+        "{err}"
+    );
 }

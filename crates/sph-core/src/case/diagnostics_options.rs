@@ -1,7 +1,9 @@
 //! The `[diagnostics]` table: what the time series records (energies and their budget,
 //! probes, sensors, loads, the surge front) and the free surface in snapshots.
 
+use super::checks::components;
 use super::Case;
+use crate::error::{Result, SphError};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -58,6 +60,10 @@ pub struct DiagnosticsConfig {
     /// Wave gauges: the free-surface elevation on vertical lines (see [`GaugeConfig`]).
     #[serde(default)]
     pub gauges: Vec<GaugeConfig>,
+    /// Flow sections: the volume and mass flow through a segment (2D) or a
+    /// parallelogram (3D) (see [`SectionConfig`]).
+    #[serde(default)]
+    pub sections: Vec<SectionConfig>,
     /// The still-water level \[m\] the gauges' elevations are measured from (vertical:
     /// y in 2D, z in 3D). Default: 0 (elevations are heights).
     #[serde(default)]
@@ -84,6 +90,90 @@ pub struct GaugeConfig {
     /// Highest point of the line \[m\]. Default: the domain's or the tanks' top.
     #[serde(default)]
     pub top: Option<f64>,
+}
+
+/// The most sample points on a flow section (Δx/2 apart).
+pub const MAX_SECTION_SAMPLES: usize = 1_000_000;
+
+/// A flow section: columns `<name>_volume_flow` \[m³/s; m²/s per unit width in 2D\] and
+/// `<name>_mass_flow` \[kg/s; kg/(s·m) in 2D\], the fluid's flow through the segment
+/// from `corners[0]` to `corners[1]` (2D), or through the parallelogram at `corners[0]`
+/// with sides to `corners[1]` and `corners[2]` (3D), counted positive along the normal:
+/// to the right of the segment's direction (a segment drawn upwards counts flow in +x),
+/// `(c1 - c0) × (c2 - c0)` in 3D. The flow densities `Σ_f (u_f·n) W V_f / (1 - Γ_w)`
+/// and `Σ_f (u_f·n) W m_f / (1 - Γ_w)` (`Γ_w` the walls' kernel sum; zero inside a
+/// wall, where `Γ_w >= ½`) are integrated over the section by the midpoint rule on
+/// points Δx/2 apart: a section may reach into the air and into walls.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SectionConfig {
+    /// Heads the columns.
+    pub name: String,
+    /// The corners \[m\]: two in 2D, three in 3D.
+    pub corners: Vec<Vec<f64>>,
+}
+
+impl SectionConfig {
+    /// The sides from the first corner to the others.
+    pub fn sides(&self) -> Vec<Vec<f64>> {
+        let origin = &self.corners[0];
+        (self.corners[1..].iter())
+            .map(|c| c.iter().zip(origin).map(|(a, b)| a - b).collect())
+            .collect()
+    }
+
+    /// The sample points along each side: no further than Δx/2 apart.
+    pub fn samples(&self, dx: f64) -> Vec<usize> {
+        (self.sides().iter())
+            .map(|side| {
+                let length = side.iter().map(|c| c * c).sum::<f64>().sqrt();
+                (length / (0.5 * dx)).ceil().max(1.0) as usize
+            })
+            .collect()
+    }
+
+    /// A section has D corners of D finite coordinates, spanning a segment (2D) or a
+    /// parallelogram (3D) of non-zero size, sampled on at most [`MAX_SECTION_SAMPLES`]
+    /// points; refused under `key`.
+    pub fn check(&self, key: &str, dimension: usize, dx: f64) -> Result<()> {
+        let shape = if dimension == 2 {
+            "a segment"
+        } else {
+            "a parallelogram"
+        };
+        let refuse = |why: String| SphError::invalid(key, format!("{:?}", self.corners), why);
+        if self.corners.len() != dimension {
+            return Err(refuse(format!("{dimension} corners, spanning {shape}")));
+        }
+        for c in &self.corners {
+            components(key, c, dimension)?;
+        }
+        let sides = self.sides();
+        let flat = if dimension == 2 {
+            sides[0].iter().all(|&c| c == 0.0)
+        } else {
+            let (a, b) = (&sides[0], &sides[1]);
+            let cross = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            cross.iter().all(|&c| c == 0.0)
+        };
+        if flat {
+            return Err(refuse(format!("corners spanning {shape} of non-zero size")));
+        }
+        let points = self
+            .samples(dx)
+            .iter()
+            .try_fold(1usize, |n, &m| n.checked_mul(m));
+        if points.is_none_or(|n| n > MAX_SECTION_SAMPLES) {
+            return Err(refuse(format!(
+                "{shape} sampled on at most {MAX_SECTION_SAMPLES} points Δx/2 apart"
+            )));
+        }
+        Ok(())
+    }
 }
 
 /// The scales of the force coefficients.

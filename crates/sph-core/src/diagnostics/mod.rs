@@ -9,12 +9,15 @@
 //!   `V_f = m_f/ρ_f` (none where no fluid is in reach).
 //! - Face sensors on the walls, averaged and low-pass filtered ([`sensors`]).
 //! - Wave gauges: the free surface's elevation on vertical lines ([`gauges`]).
+//! - Flow sections: the volume and mass flow through a segment or a parallelogram
+//!   ([`sections`]).
 //! - The stability guard (`guard`) and the count of fluid inside walls (`crossings`).
 
 pub mod budget;
 mod crossings;
 pub mod gauges;
 mod guard;
+pub mod sections;
 pub mod sensors;
 pub mod series;
 
@@ -89,9 +92,9 @@ pub fn max_density_variation<const D: usize>(p: &Particles<D>, rho0: f64) -> f64
         .reduce(|| 0.0, f64::max)
 }
 
-/// Calls `f(j, W(x - x_j) V_j)` for every fluid particle `j` within the kernel support
-/// of `point`.
-fn for_fluid_near<const D: usize>(
+/// Calls `f(j, W(x - x_j) V_j)` for every particle `j` (fluid and wall) within the
+/// kernel support of `point`.
+fn for_near<const D: usize>(
     kernel: &(impl Smoothing + ?Sized),
     p: &Particles<D>,
     list: &NeighbourList<D>,
@@ -101,14 +104,58 @@ fn for_fluid_near<const D: usize>(
 ) {
     let r_max = kernel.support_radius();
     list.for_candidates(point, |j| {
-        if p.kind[j] != Kind::Fluid {
-            return;
-        }
         let r = domain.separation(point, &p.x[j]).norm();
         if r < r_max {
             f(j, kernel.w(r) * p.mass[j] / p.rho[j]);
         }
     });
+}
+
+/// [`for_near`] over the fluid particles only.
+fn for_fluid_near<const D: usize>(
+    kernel: &(impl Smoothing + ?Sized),
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+    mut f: impl FnMut(usize, f64),
+) {
+    for_near(kernel, p, list, domain, point, |j, wv| {
+        if p.kind[j] == Kind::Fluid {
+            f(j, wv)
+        }
+    });
+}
+
+/// The volume and mass flow densities through a section at `point` along the unit
+/// `normal`: `[Σ_f (u_f·n) W_f V_f, Σ_f (u_f·n) W_f m_f] / (1 - Γ_w)`, with
+/// `Γ_w = Σ_w W_w V_w` the walls' kernel sum; zero inside a wall (`Γ_w >= ½`).
+///
+/// Dividing by `1 - Γ_w` restores the kernel's share that the walls take next to
+/// them (where `Γ_f + Γ_w ≈ 1` the fluid's share counts fully), while at a free
+/// surface the fluid's taper `Γ_f` from 1 to 0 stays: integrated across a flat surface
+/// it gives the depth to the surface plane, as the gauges read it.
+pub fn flow_density<const D: usize>(
+    kernel: &(impl Smoothing + ?Sized),
+    p: &Particles<D>,
+    list: &NeighbourList<D>,
+    domain: &Domain<D>,
+    point: &Vector<D>,
+    normal: &Vector<D>,
+) -> [f64; 2] {
+    let (mut volume, mut mass, mut walls) = (0.0, 0.0, 0.0);
+    for_near(kernel, p, list, domain, point, |j, wv| match p.kind[j] {
+        Kind::Fluid => {
+            let un = p.u[j].dot(normal) * wv;
+            volume += un;
+            mass += un * p.rho[j];
+        }
+        Kind::Wall => walls += wv,
+    });
+    if walls >= 0.5 {
+        return [0.0; 2];
+    }
+    [volume / (1.0 - walls), mass / (1.0 - walls)]
 }
 
 /// Shepard-interpolated fluid pressure at `point`, `Σ_j p_j W_ij V_j / Σ_j W_ij V_j`

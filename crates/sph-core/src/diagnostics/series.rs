@@ -5,6 +5,7 @@
 
 use super::budget::EnergyBudget;
 use super::gauges::Gauge;
+use super::sections::Section;
 use super::sensors::Sensor;
 use super::Energies;
 use crate::boundary::bodies::{Body, Load};
@@ -37,6 +38,9 @@ pub trait Measure<const D: usize> {
     fn probe_velocities(&self, points: &[Vector<D>]) -> Vec<Option<Vector<D>>>;
     /// The fluid's kernel sum Γ at `points`.
     fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64>;
+    /// The volume and mass flow densities through a section along `normal` at `points`
+    /// ([`super::flow_density`]).
+    fn flow_densities(&self, points: &[Vector<D>], normal: &Vector<D>) -> Vec<[f64; 2]>;
     /// Largest fluid coordinate along `axis`.
     fn surge_front(&self, axis: usize) -> f64;
     /// The fluid's load on each body, in case order.
@@ -91,6 +95,9 @@ pub fn observers<const D: usize>(case: &Case, bodies: &[Body]) -> Vec<Box<dyn Ob
     }
     for g in &diag.gauges {
         list.push(Box::new(Gauge::<D>::new(case, g)));
+    }
+    for s in &diag.sections {
+        list.push(Box::new(Section::<D>::new(s, case.dx())));
     }
     if let Some(axis) = diag.surge_front_axis {
         list.push(Box::new(SurgeFront { axis }));
@@ -298,6 +305,16 @@ impl<const D: usize> Observer<D> for Gauge<D> {
     }
     fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
         out.push(self.elevation(&run.fluid_fractions(&self.points)));
+    }
+}
+
+/// `<name>_volume_flow`, `<name>_mass_flow`: the flow through the section.
+impl<const D: usize> Observer<D> for Section<D> {
+    fn header(&self, out: &mut Vec<String>) {
+        out.extend(["volume_flow", "mass_flow"].map(|c| format!("{}_{c}", self.name)));
+    }
+    fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
+        out.extend(self.flow(&run.flow_densities(&self.points, &self.normal)));
     }
 }
 

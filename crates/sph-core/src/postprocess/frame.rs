@@ -1,7 +1,7 @@
-//! One snapshot made ready for interpolation at points: its fluid particles (the
-//! probes read no wall) sorted into the cells of a grid, as a run's neighbour search
-//! sorts them, so that the in-run probe and gauge rules of [`crate::diagnostics`] read
-//! it as they read the running simulation.
+//! One snapshot made ready for interpolation at points: its particles sorted into the
+//! cells of a grid, as a run's neighbour search sorts them, so that the in-run probe,
+//! gauge and section rules of [`crate::diagnostics`] read it as they read the running
+//! simulation.
 //!
 //! The interpolation needs each particle's volume `V = m/ρ`: snapshots hold `mass`
 //! since the measure tool exists; older ones are refused with the reason.
@@ -16,11 +16,11 @@ use crate::particles::{Kind, Particles, Vector};
 use crate::physics::kernel::Smoothing;
 use std::path::Path;
 
-/// A snapshot's fluid, sorted for point queries.
+/// A snapshot's particles, sorted for point queries.
 pub struct Frame<const D: usize> {
     pub time: f64,
     pub step: u64,
-    fluid: Particles<D>,
+    particles: Particles<D>,
     /// The cell grid only (no neighbour rows: points are not particles).
     cells: NeighbourList<D>,
     domain: Domain<D>,
@@ -36,13 +36,14 @@ impl<const D: usize> Frame<D> {
                 format!("a {}D snapshot in a run of a {D}D case", snapshot.dimension),
             ));
         }
-        let mut fluid = fluid_of(&snapshot).map_err(|e| SphError::output(path, e))?;
-        let domain = domain_of(case, &fluid);
-        let (cells, _) = NeighbourList::build_rows(&mut fluid, &domain, support, 0.0, |_, _| false);
+        let mut particles = particles_of(&snapshot).map_err(|e| SphError::output(path, e))?;
+        let domain = domain_of(case, &particles);
+        let (cells, _) =
+            NeighbourList::build_rows(&mut particles, &domain, support, 0.0, |_, _| false);
         Ok(Self {
             time: snapshot.time,
             step: snapshot.step,
-            fluid,
+            particles,
             cells,
             domain,
         })
@@ -50,27 +51,39 @@ impl<const D: usize> Frame<D> {
 
     /// Shepard-interpolated pressure at `x` ([`diagnostics::probe_pressure`]).
     pub fn pressure(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<f64> {
-        diagnostics::probe_pressure(kernel, &self.fluid, &self.cells, &self.domain, x)
+        diagnostics::probe_pressure(kernel, &self.particles, &self.cells, &self.domain, x)
     }
 
     /// Shepard-interpolated velocity at `x` ([`diagnostics::probe_velocity`]).
     pub fn velocity(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<Vector<D>> {
-        diagnostics::probe_velocity(kernel, &self.fluid, &self.cells, &self.domain, x)
+        diagnostics::probe_velocity(kernel, &self.particles, &self.cells, &self.domain, x)
     }
 
     /// Shepard-interpolated density at `x` ([`diagnostics::probe_density`]).
     pub fn density(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<f64> {
-        diagnostics::probe_density(kernel, &self.fluid, &self.cells, &self.domain, x)
+        diagnostics::probe_density(kernel, &self.particles, &self.cells, &self.domain, x)
     }
 
     /// The fluid's kernel sum Γ at `x` ([`diagnostics::fluid_fraction`]).
     pub fn fluid_fraction(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> f64 {
-        diagnostics::fluid_fraction(kernel, &self.fluid, &self.cells, &self.domain, x)
+        diagnostics::fluid_fraction(kernel, &self.particles, &self.cells, &self.domain, x)
+    }
+
+    /// The volume and mass flow densities through a section along `normal` at `x`
+    /// ([`diagnostics::flow_density`]).
+    pub fn flow_density(
+        &self,
+        kernel: &dyn Smoothing,
+        x: &Vector<D>,
+        normal: &Vector<D>,
+    ) -> [f64; 2] {
+        let (p, cells, domain) = (&self.particles, &self.cells, &self.domain);
+        diagnostics::flow_density(kernel, p, cells, domain, x, normal)
     }
 }
 
-/// The fluid particles of `snapshot` with the fields the probes read.
-fn fluid_of<const D: usize>(snapshot: &Snapshot) -> std::result::Result<Particles<D>, String> {
+/// The particles of `snapshot` with the fields the probes read.
+fn particles_of<const D: usize>(snapshot: &Snapshot) -> std::result::Result<Particles<D>, String> {
     let field = |name: &str| snapshot.fields.iter().find(|f| f.0 == name).map(|f| &f.1);
     let floats = |name: &str| match field(name) {
         Some(Field::Float { values, .. }) => Ok(values.as_slice()),
@@ -89,27 +102,32 @@ fn fluid_of<const D: usize>(snapshot: &Snapshot) -> std::result::Result<Particle
         return Err("the snapshot has no `kind` field".into());
     };
     let vector = |v: &[f64], i: usize| Vector::<D>::from_column_slice(&v[i * D..(i + 1) * D]);
-    let mut fluid = Particles::default();
-    for i in (0..kind.len()).filter(|&i| kind[i] == Kind::Fluid as u8) {
-        fluid.push(Kind::Fluid, vector(x, i), vector(u, i), rho[i], mass[i]);
-        let last = fluid.len() - 1;
-        fluid.p[last] = p[i];
+    let mut particles = Particles::default();
+    for (i, &k) in kind.iter().enumerate() {
+        let kind = if k == Kind::Fluid as u8 {
+            Kind::Fluid
+        } else {
+            Kind::Wall
+        };
+        particles.push(kind, vector(x, i), vector(u, i), rho[i], mass[i]);
+        let last = particles.len() - 1;
+        particles.p[last] = p[i];
     }
-    Ok(fluid)
+    Ok(particles)
 }
 
 /// The case's `[domain]` (its periodic axes wrap distances); without one, distances do
-/// not wrap and any box holding the fluid serves.
-fn domain_of<const D: usize>(case: &Case, fluid: &Particles<D>) -> Domain<D> {
+/// not wrap and any box holding the particles serves.
+fn domain_of<const D: usize>(case: &Case, particles: &Particles<D>) -> Domain<D> {
     if let Some(d) = &case.domain {
         let corner = |v: &[f64]| Vector::<D>::from_fn(|k, _| v[k]);
         let periodic = std::array::from_fn(|k| d.is_periodic(k));
         return Domain::new(corner(&d.lo), corner(&d.hi), periodic);
     }
-    if fluid.is_empty() {
+    if particles.is_empty() {
         return Domain::new(Vector::zeros(), Vector::repeat(1.0), [false; D]);
     }
-    let (lo, hi) = fluid.x.iter().fold(
+    let (lo, hi) = particles.x.iter().fold(
         (Vector::<D>::repeat(f64::MAX), Vector::<D>::repeat(f64::MIN)),
         |(lo, hi), x| (lo.inf(x), hi.sup(x)),
     );

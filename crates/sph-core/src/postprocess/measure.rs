@@ -1,17 +1,21 @@
-//! The measure tool: pressure, velocity and density interpolated at points, and the
-//! free-surface elevation on vertical lines, from every snapshot of a run folder.
+//! The measure tool: pressure, velocity and density interpolated at points, the
+//! free-surface elevation on vertical lines, and the volume and mass flow through
+//! sections, from every snapshot of a run folder.
 //!
 //! Each value follows the in-run rule exactly ([`crate::diagnostics`]): the
 //! Shepard-normalised kernel sum over the fluid, `f(x) = Σ_j f_j W(x - x_j) V_j /
 //! Σ_j W(x - x_j) V_j` with `V_j = m_j/ρ_j`, and the gauges' crossing of `Γ = ½` on a
-//! vertical line. A point with no fluid within the kernel support (dry, or inside a
+//! vertical line, and the sections' flow densities ([`crate::diagnostics::sections`]).
+//! A point with no fluid within the kernel support (dry, or inside a
 //! wall) has no value: NaN, an empty reading and not a zero. A dry line reads its
 //! bottom, as an in-run gauge does.
 
 use super::frame::Frame;
 use super::points::MAX_POINTS;
 use super::RunFolder;
+use crate::case::SectionConfig;
 use crate::diagnostics::gauges::Gauge;
+use crate::diagnostics::sections::Section;
 use crate::error::{Result, SphError};
 use crate::io::output::atomic;
 use crate::particles::Vector;
@@ -21,7 +25,11 @@ use std::path::Path;
 
 /// How the header of every CSV file the measure tool writes starts (the only files it
 /// replaces): the clock, then the first point's or line's column.
-const CSV_MARKS: [&str; 2] = ["time,step,point0_", "time,step,line0_"];
+const CSV_MARKS: [&str; 3] = [
+    "time,step,point0_",
+    "time,step,line0_",
+    "time,step,section0_",
+];
 
 /// The most values one measurement holds (snapshots × points × components): 2 GB.
 const MAX_VALUES: usize = 250_000_000;
@@ -67,18 +75,31 @@ pub struct Request {
     pub quantities: Vec<Quantity>,
     /// The vertical lines the elevation is read on: x in 2D, (x, y) in 3D.
     pub elevations: Vec<Vec<f64>>,
+    /// The corners of the flow sections (see [`SectionConfig`]).
+    pub sections: Vec<Vec<Vec<f64>>>,
 }
 
 /// One measured quantity: `values[(s * count + k) * components + c]` is component c
 /// at point (or line) k in snapshot s.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
-    /// `pressure`, `velocity`, `density` or `elevation`.
+    /// `pressure`, `velocity`, `density`, `elevation`, `volume_flow` or `mass_flow`.
     pub name: &'static str,
     /// Points (or lines) per snapshot.
     pub count: usize,
     pub components: usize,
     pub values: Vec<f64>,
+}
+
+impl Series {
+    fn new(name: &'static str, count: usize, components: usize) -> Self {
+        Self {
+            name,
+            count,
+            components,
+            values: Vec::new(),
+        }
+    }
 }
 
 /// The measured series, a row per snapshot.
@@ -106,10 +127,18 @@ fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<M
     let gauges = (request.elevations.iter().enumerate())
         .map(|(k, x)| Gauge::<D>::at(case, x, &format!("elevation[{k}]")))
         .collect::<Result<Vec<_>>>()?;
-    let per_snapshot: usize = (request.quantities.iter())
-        .map(|q| q.components(D) * points.len())
-        .sum::<usize>()
-        + gauges.len();
+    let sections = sections_of::<D>(&request.sections, case.dx())?;
+    let mut series: Vec<Series> = (request.quantities.iter())
+        .map(|q| Series::new(q.name(), points.len(), q.components(D)))
+        .collect();
+    if !gauges.is_empty() {
+        series.push(Series::new("elevation", gauges.len(), 1));
+    }
+    if !sections.is_empty() {
+        series.push(Series::new("volume_flow", sections.len(), 1));
+        series.push(Series::new("mass_flow", sections.len(), 1));
+    }
+    let per_snapshot: usize = series.iter().map(|s| s.count * s.components).sum();
     if per_snapshot.saturating_mul(folder.snapshots.len()) > MAX_VALUES {
         return Err(SphError::invalid(
             "points",
@@ -121,41 +150,28 @@ fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<M
         ));
     }
     let kernel = case.particles.kernel.with_length(case.h(), D);
-    let mut series: Vec<Series> = (request.quantities.iter())
-        .map(|q| Series {
-            name: q.name(),
-            count: points.len(),
-            components: q.components(D),
-            values: Vec::new(),
-        })
-        .collect();
-    if !gauges.is_empty() {
-        series.push(Series {
-            name: "elevation",
-            count: gauges.len(),
-            components: 1,
-            values: Vec::new(),
-        });
-    }
     let (mut times, mut steps) = (Vec::new(), Vec::new());
     for (path, _) in &folder.snapshots {
         let frame = Frame::<D>::read(path, case, kernel.support_radius())?;
         let kernel = kernel.as_ref();
-        for (s, q) in series.iter_mut().zip(&request.quantities) {
-            s.values.extend(read_points(&frame, kernel, *q, &points));
-        }
-        if let Some(s) = series.last_mut().filter(|_| !gauges.is_empty()) {
-            s.values.extend(
+        let mut rows: Vec<Vec<f64>> = (request.quantities.iter())
+            .map(|q| read_points(&frame, kernel, *q, &points))
+            .collect();
+        if !gauges.is_empty() {
+            rows.push(
                 gauges
                     .par_iter()
-                    .map(|g| {
-                        let gamma: Vec<f64> = (g.points.iter())
-                            .map(|x| frame.fluid_fraction(kernel, x))
-                            .collect();
-                        g.elevation(&gamma)
-                    })
-                    .collect::<Vec<_>>(),
+                    .map(|g| elevation(&frame, kernel, g))
+                    .collect(),
             );
+        }
+        if !sections.is_empty() {
+            let flows: Vec<[f64; 2]> = (sections.iter()).map(|s| flow(&frame, kernel, s)).collect();
+            rows.push(flows.iter().map(|f| f[0]).collect());
+            rows.push(flows.iter().map(|f| f[1]).collect());
+        }
+        for (s, row) in series.iter_mut().zip(rows) {
+            s.values.extend(row);
         }
         times.push(frame.time);
         steps.push(frame.step);
@@ -167,6 +183,36 @@ fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<M
         request: request.clone(),
         series,
     })
+}
+
+/// The elevation gauge `g` reads in `frame`.
+fn elevation<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, g: &Gauge<D>) -> f64 {
+    let gamma: Vec<f64> = (g.points.iter())
+        .map(|x| frame.fluid_fraction(kernel, x))
+        .collect();
+    g.elevation(&gamma)
+}
+
+/// The volume and mass flow through section `s` in `frame`.
+fn flow<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, s: &Section<D>) -> [f64; 2] {
+    let densities: Vec<[f64; 2]> = (s.points.par_iter())
+        .map(|x| frame.flow_density(kernel, x, &s.normal))
+        .collect();
+    s.flow(&densities)
+}
+
+/// The request's sections, each checked as a case's (`sections[k]`).
+fn sections_of<const D: usize>(corners: &[Vec<Vec<f64>>], dx: f64) -> Result<Vec<Section<D>>> {
+    (corners.iter().enumerate())
+        .map(|(k, corners)| {
+            let config = SectionConfig {
+                name: format!("section{k}"),
+                corners: corners.clone(),
+            };
+            config.check(&format!("sections[{k}]"), D, dx)?;
+            Ok(Section::new(&config, dx))
+        })
+        .collect()
 }
 
 /// The request's points as vectors, each checked: D finite coordinates.
@@ -215,7 +261,8 @@ fn read_points<const D: usize>(
 
 impl Measurement {
     /// The CSV columns: `time`, `step`, then per quantity and point k `point<k>_pressure`,
-    /// `point<k>_u` … `point<k>_density`, then `line<k>_elevation`.
+    /// `point<k>_u` … `point<k>_density`, then `line<k>_elevation`, then
+    /// `section<k>_volume_flow` and `section<k>_mass_flow`.
     pub fn header(&self) -> Vec<String> {
         let components = &["u", "v", "w"][..self.dimension];
         let mut out = vec!["time".to_string(), "step".to_string()];
@@ -224,6 +271,7 @@ impl Measurement {
                 match s.name {
                     "velocity" => out.extend(components.iter().map(|c| format!("point{k}_{c}"))),
                     "elevation" => out.push(format!("line{k}_elevation")),
+                    flow @ ("volume_flow" | "mass_flow") => out.push(format!("section{k}_{flow}")),
                     name => out.push(format!("point{k}_{name}")),
                 }
             }

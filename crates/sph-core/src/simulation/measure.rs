@@ -82,6 +82,9 @@ impl<const D: usize> Measure<D> for Row<'_, D> {
     fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64> {
         self.sim.fluid_fractions(points)
     }
+    fn flow_densities(&self, points: &[Vector<D>], normal: &Vector<D>) -> Vec<[f64; 2]> {
+        self.sim.flow_densities(points, normal)
+    }
     fn surge_front(&self, axis: usize) -> f64 {
         self.sim.surge_front(axis)
     }

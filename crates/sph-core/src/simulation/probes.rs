@@ -32,6 +32,26 @@ impl<const D: usize> Simulation<D> {
         values.into_iter().map(|v| v.map(Vector::from)).collect()
     }
 
+    /// The volume and mass flow densities through a section along `normal` at `points`
+    /// (see [`diagnostics::flow_density`]), in a split run each from its owner
+    /// (collective).
+    pub fn flow_densities(&self, points: &[Vector<D>], normal: &Vector<D>) -> Vec<[f64; 2]> {
+        let s = &self.stepper;
+        let density = |x: &Vector<D>| {
+            let p = self.particles();
+            Some(diagnostics::flow_density(
+                s.model.as_ref(),
+                p,
+                &s.list,
+                &s.domain,
+                x,
+                normal,
+            ))
+        };
+        let values = self.at_owners(points, density);
+        values.into_iter().map(|v| v.unwrap_or([0.0; 2])).collect()
+    }
+
     /// `f` at each of `points`; in a split run from the process whose region holds the
     /// point, which holds all the fluid in reach of it (collective).
     fn at_owners<const N: usize>(

@@ -179,11 +179,12 @@ def measure(
     points: list[list[float]],
     fields: list[str],
     elevations: list[list[float]],
-    out: Optional[Union[str, PathLike[str]]] = None,
-    overwrite: bool = False,
+    sections: list[list[list[float]]],
+    out: Optional[tuple[Union[str, PathLike[str]], bool]] = None,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.uint64], dict[str, npt.NDArray[np.float64]]]:
-    """``(times, steps, series)`` measured at ``points`` and on the vertical lines
-    ``elevations`` in every snapshot of the run folder ``run``; NaN where dry."""
+    """``(times, steps, series)`` measured at ``points``, on the vertical lines
+    ``elevations`` and through the ``sections`` (their corners) in every snapshot of the
+    run folder ``run``; NaN where dry."""
 
 def cli(args: list[str]) -> int:
     """Runs the ``deltasph`` command line with ``args``; returns its exit code."""

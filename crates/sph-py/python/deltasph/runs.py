@@ -154,17 +154,19 @@ def load(path: PathLike) -> RunFolder:
 
 class Measurement:
     """What :func:`measure` read from each snapshot of a run: ``times`` [s] and
-    ``steps`` (S,), the ``points`` (P, D) and elevation ``lines`` (G, D - 1) asked for,
-    and an array per field: ``pressure`` and ``density`` (S, P), ``velocity`` (S, P, D),
-    ``elevation`` (S, G), above ``diagnostics.still_level``. A point with no fluid
-    within the kernel support (dry, or inside a wall) reads NaN; a dry line reads its
-    bottom, as an in-run gauge does."""
+    ``steps`` (S,), the ``points`` (P, D), elevation ``lines`` (G, D - 1) and
+    ``sections`` (K, D, D: their corners) asked for, and an array per field:
+    ``pressure`` and ``density`` (S, P), ``velocity`` (S, P, D), ``elevation`` (S, G),
+    above ``diagnostics.still_level``, ``volume_flow`` and ``mass_flow`` (S, K). A point
+    with no fluid within the kernel support (dry, or inside a wall) reads NaN; a dry
+    line reads its bottom, as an in-run gauge does."""
 
     def __init__(self, times: npt.NDArray[np.float64], steps: npt.NDArray[np.uint64],
                  points: npt.NDArray[np.float64], lines: npt.NDArray[np.float64],
+                 sections: npt.NDArray[np.float64],
                  series: Dict[str, npt.NDArray[np.float64]]) -> None:
         self.times, self.steps, self.points, self.lines = times, steps, points, lines
-        self.series = series
+        self.sections, self.series = sections, series
 
     def __getattr__(self, name: str) -> npt.NDArray[np.float64]:
         series = self.__dict__.get("series", {})
@@ -182,16 +184,20 @@ def measure(run: PathLike, points: Optional[ArrayLike] = None, *,
             line: Optional[Tuple[ArrayLike, ArrayLike, int]] = None,
             grid: Optional[Tuple[ArrayLike, ArrayLike, ArrayLike]] = None,
             elevation: Optional[ArrayLike] = None,
+            sections: Optional[ArrayLike] = None,
             fields: Sequence[str] = ("pressure",),
             out: Optional[PathLike] = None, overwrite: bool = False) -> Measurement:
-    """Reads ``fields`` (``"pressure"``, ``"velocity"``, ``"density"``) at points, and the
-    free-surface elevation on vertical lines, from every snapshot of the run folder
-    ``run``, as ``sph-cli measure`` does (see :class:`Measurement`).
+    """Reads ``fields`` (``"pressure"``, ``"velocity"``, ``"density"``) at points, the
+    free-surface elevation on vertical lines and the flow through sections, from every
+    snapshot of the run folder ``run``, as ``sph-cli measure`` does (see
+    :class:`Measurement`).
 
     The points are ``points`` (P, D), then the ``n`` points of ``line = (a, b, n)`` from
     ``a`` to ``b`` (ends included), then the nodes of ``grid = (lo, hi, counts)`` (the
     first axis varying fastest). ``elevation`` lists the lines: x in 2D (a number each),
-    (x, y) in 3D. ``out`` also writes the CSV there (an earlier one replaced only with
+    (x, y) in 3D. ``sections`` lists the sections by their corners: a segment (2D, two
+    corners; flow to the right of first-to-second counts positive) or a parallelogram
+    (3D, three corners; normal (c1 - c0) × (c2 - c0)). ``out`` also writes the CSV there (an earlier one replaced only with
     ``overwrite``, and only if the measure tool wrote it)."""
     blocks: List[npt.NDArray[np.float64]] = []
     if points is not None:
@@ -214,11 +220,12 @@ def measure(run: PathLike, points: Optional[ArrayLike] = None, *,
     lines = np.asarray([] if elevation is None else elevation, dtype=float)
     if lines.ndim <= 1:
         lines = lines.reshape(-1, 1)
+    corners = np.asarray([] if sections is None else sections, dtype=float)
     all_points = np.concatenate(blocks) if blocks else np.zeros((0, dimension))
-    if not len(all_points) and not len(lines):
-        raise ValueError("measure: no points; give points, line, grid or elevation")
+    if not (len(all_points) or len(lines) or len(corners)):
+        raise ValueError("measure: no points; give points, line, grid, elevation or sections")
     wanted = list(fields) if len(all_points) else []
     times, steps, series = _core.measure(
-        str(run), all_points.tolist(), wanted, lines.tolist(),
-        None if out is None else str(out), overwrite)
-    return Measurement(times, steps, all_points, lines, series)
+        str(run), all_points.tolist(), wanted, lines.tolist(), corners.tolist(),
+        None if out is None else (str(out), overwrite))
+    return Measurement(times, steps, all_points, lines, corners, series)

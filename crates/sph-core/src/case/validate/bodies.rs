@@ -103,6 +103,16 @@ impl Case {
         Ok(())
     }
 
+    /// A section needs a plain name of its own and corners that span it
+    /// ([`SectionConfig::check`]).
+    pub(super) fn check_flow_section(&self, k: usize) -> Result<()> {
+        let sections = &self.diagnostics.sections;
+        let key = |what: &str| format!("diagnostics.sections[{k}].{what}");
+        let earlier = sections[..k].iter().map(|o| o.name.as_str());
+        own_column_name(&key("name"), &sections[k].name, earlier, "section")?;
+        sections[k].check(&key("corners"), self.dimension, self.dx())
+    }
+
     /// A rectangular face (3D only) needs a positive width and a direction `along` for
     /// its `size` side that is not the normal's.
     pub(super) fn check_rectangle(&self, k: usize, s: &SensorConfig) -> Result<()> {

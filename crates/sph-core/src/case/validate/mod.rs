@@ -200,6 +200,9 @@ impl Case {
         for k in 0..self.diagnostics.gauges.len() {
             self.check_gauge(k)?;
         }
+        for k in 0..self.diagnostics.sections.len() {
+            self.check_flow_section(k)?;
+        }
         if let Some(level) = self.diagnostics.still_level {
             finite("diagnostics.still_level", level)?;
         }

@@ -49,6 +49,7 @@ PANELS = [
     ("loads", r"_(pressure|viscous)_f[xyz]$|_moment_[xyz]$|_c[xyz]$",
      "force [N], moment [N m], coefficient"),
     ("gauges", r"_elevation$", "elevation [m]"),
+    ("sections", r"_volume_flow$", "volume flow [m³/s; m²/s in 2D]"),
 ]
 
 

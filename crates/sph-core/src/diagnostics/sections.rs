@@ -1,5 +1,5 @@
 //! Flow sections: the volume and mass flow through a segment (2D) or a parallelogram
-//! (3D), `Q = ∫_S q(x) dA` with the flow densities `q` of [`super::flow_density`],
+//! (3D), `Q = ∫_S q(x) dA` with the flow densities `q` of [`super::PointReader::flow_density`],
 //! integrated by the midpoint rule on points no further than Δx/2 apart (the densities
 //! vary over the kernel's support, 2h ≥ 2.7Δx).
 

@@ -39,7 +39,7 @@ pub trait Measure<const D: usize> {
     /// The fluid's kernel sum Γ at `points`.
     fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64>;
     /// The volume and mass flow densities through a section along `normal` at `points`
-    /// ([`super::flow_density`]).
+    /// ([`super::PointReader::flow_density`]).
     fn flow_densities(&self, points: &[Vector<D>], normal: &Vector<D>) -> Vec<[f64; 2]>;
     /// Largest fluid coordinate along `axis`.
     fn surge_front(&self, axis: usize) -> f64;

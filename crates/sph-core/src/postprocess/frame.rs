@@ -7,7 +7,7 @@
 //! since the measure tool exists; older ones are refused with the reason.
 
 use crate::case::Case;
-use crate::diagnostics;
+use crate::diagnostics::PointReader;
 use crate::domain::Domain;
 use crate::error::{Result, SphError};
 use crate::io::output::reading::{read_snapshot, Field, Snapshot};
@@ -49,36 +49,17 @@ impl<const D: usize> Frame<D> {
         })
     }
 
-    /// Shepard-interpolated pressure at `x` ([`diagnostics::probe_pressure`]).
-    pub fn pressure(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<f64> {
-        diagnostics::probe_pressure(kernel, &self.particles, &self.cells, &self.domain, x)
-    }
-
-    /// Shepard-interpolated velocity at `x` ([`diagnostics::probe_velocity`]).
-    pub fn velocity(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<Vector<D>> {
-        diagnostics::probe_velocity(kernel, &self.particles, &self.cells, &self.domain, x)
-    }
-
-    /// Shepard-interpolated density at `x` ([`diagnostics::probe_density`]).
-    pub fn density(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> Option<f64> {
-        diagnostics::probe_density(kernel, &self.particles, &self.cells, &self.domain, x)
-    }
-
-    /// The fluid's kernel sum Γ at `x` ([`diagnostics::fluid_fraction`]).
-    pub fn fluid_fraction(&self, kernel: &dyn Smoothing, x: &Vector<D>) -> f64 {
-        diagnostics::fluid_fraction(kernel, &self.particles, &self.cells, &self.domain, x)
-    }
-
-    /// The volume and mass flow densities through a section along `normal` at `x`
-    /// ([`diagnostics::flow_density`]).
-    pub fn flow_density(
-        &self,
-        kernel: &dyn Smoothing,
-        x: &Vector<D>,
-        normal: &Vector<D>,
-    ) -> [f64; 2] {
-        let (p, cells, domain) = (&self.particles, &self.cells, &self.domain);
-        diagnostics::flow_density(kernel, p, cells, domain, x, normal)
+    /// The snapshot read at points with `kernel`, by the in-run rules.
+    pub fn reader<'a>(
+        &'a self,
+        kernel: &'a dyn Smoothing,
+    ) -> PointReader<'a, D, dyn Smoothing + 'a> {
+        PointReader {
+            kernel,
+            particles: &self.particles,
+            list: &self.cells,
+            domain: &self.domain,
+        }
     }
 }
 

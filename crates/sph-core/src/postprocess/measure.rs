@@ -188,7 +188,7 @@ fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<M
 /// The elevation gauge `g` reads in `frame`.
 fn elevation<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, g: &Gauge<D>) -> f64 {
     let gamma: Vec<f64> = (g.points.iter())
-        .map(|x| frame.fluid_fraction(kernel, x))
+        .map(|x| frame.reader(kernel).fluid_fraction(x))
         .collect();
     g.elevation(&gamma)
 }
@@ -196,7 +196,7 @@ fn elevation<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, g: &Gauge
 /// The volume and mass flow through section `s` in `frame`.
 fn flow<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, s: &Section<D>) -> [f64; 2] {
     let densities: Vec<[f64; 2]> = (s.points.par_iter())
-        .map(|x| frame.flow_density(kernel, x, &s.normal))
+        .map(|x| frame.reader(kernel).flow_density(x, &s.normal))
         .collect();
     s.flow(&densities)
 }
@@ -245,12 +245,13 @@ fn read_points<const D: usize>(
     q: Quantity,
     points: &[Vector<D>],
 ) -> Vec<f64> {
+    let reader = frame.reader(kernel);
     let rows: Vec<Vec<f64>> = points
         .par_iter()
         .map(|x| match q {
-            Quantity::Pressure => vec![frame.pressure(kernel, x).unwrap_or(f64::NAN)],
-            Quantity::Density => vec![frame.density(kernel, x).unwrap_or(f64::NAN)],
-            Quantity::Velocity => match frame.velocity(kernel, x) {
+            Quantity::Pressure => vec![reader.pressure(x).unwrap_or(f64::NAN)],
+            Quantity::Density => vec![reader.density(x).unwrap_or(f64::NAN)],
+            Quantity::Velocity => match reader.velocity(x) {
                 Some(u) => u.iter().copied().collect(),
                 None => vec![f64::NAN; D],
             },

@@ -3,11 +3,12 @@
 //! by the process whose region holds it.
 
 use super::Simulation;
-use crate::diagnostics;
 use crate::diagnostics::gauges::Gauge;
+use crate::diagnostics::PointReader;
 use crate::error::Result;
 use crate::geometry;
 use crate::particles::Vector;
+use crate::scheme::model::Model;
 
 impl<const D: usize> Simulation<D> {
     /// Shepard-interpolated pressures at `points` (see [`Self::probe_pressure`]): in a
@@ -18,36 +19,21 @@ impl<const D: usize> Simulation<D> {
         values.into_iter().map(|v| v.map(|[p]| p)).collect()
     }
 
-    /// Shepard-interpolated fluid velocities at `points` (see
-    /// [`diagnostics::probe_velocity`]), in a split run each from its owner
-    /// (collective).
+    /// Shepard-interpolated fluid velocities at `points` (see [`PointReader::velocity`]),
+    /// in a split run each from its owner (collective).
     pub fn probe_velocities(&self, points: &[Vector<D>]) -> Vec<Option<Vector<D>>> {
-        let s = &self.stepper;
-        let velocity = |x: &Vector<D>| {
-            let p = self.particles();
-            diagnostics::probe_velocity(s.model.as_ref(), p, &s.list, &s.domain, x)
-                .map(|u| std::array::from_fn(|d| u[d]))
-        };
+        let reader = self.reader();
+        let velocity = |x: &Vector<D>| reader.velocity(x).map(|u| std::array::from_fn(|d| u[d]));
         let values = self.at_owners(points, velocity);
         values.into_iter().map(|v| v.map(Vector::from)).collect()
     }
 
     /// The volume and mass flow densities through a section along `normal` at `points`
-    /// (see [`diagnostics::flow_density`]), in a split run each from its owner
+    /// (see [`PointReader::flow_density`]), in a split run each from its owner
     /// (collective).
     pub fn flow_densities(&self, points: &[Vector<D>], normal: &Vector<D>) -> Vec<[f64; 2]> {
-        let s = &self.stepper;
-        let density = |x: &Vector<D>| {
-            let p = self.particles();
-            Some(diagnostics::flow_density(
-                s.model.as_ref(),
-                p,
-                &s.list,
-                &s.domain,
-                x,
-                normal,
-            ))
-        };
+        let reader = self.reader();
+        let density = |x: &Vector<D>| Some(reader.flow_density(x, normal));
         let values = self.at_owners(points, density);
         values.into_iter().map(|v| v.unwrap_or([0.0; 2])).collect()
     }
@@ -76,14 +62,11 @@ impl<const D: usize> Simulation<D> {
             .collect()
     }
 
-    /// The fluid's kernel sum Γ at `points` (see [`diagnostics::fluid_fraction`]); in a
+    /// The fluid's kernel sum Γ at `points` (see [`PointReader::fluid_fraction`]); in a
     /// split run each point's owner sums it (collective).
     pub fn fluid_fractions(&self, points: &[Vector<D>]) -> Vec<f64> {
-        let s = &self.stepper;
-        let gamma = |x: &Vector<D>| {
-            let p = self.particles();
-            diagnostics::fluid_fraction(s.model.as_ref(), p, &s.list, &s.domain, x)
-        };
+        let reader = self.reader();
+        let gamma = |x: &Vector<D>| reader.fluid_fraction(x);
         let Some(ranks) = self.ranks() else {
             return points.iter().map(gamma).collect();
         };
@@ -111,14 +94,19 @@ impl<const D: usize> Simulation<D> {
     /// Shepard-interpolated pressure at `point` (call [`Self::sync_pressure`] first);
     /// `None` where no fluid is within the kernel support.
     pub fn probe_pressure(&self, point: &Vector<D>) -> Option<f64> {
+        self.reader().pressure(point)
+    }
+
+    /// The run read at points with its own kernel (one process's particles in a split
+    /// run).
+    fn reader(&self) -> PointReader<'_, D, dyn Model<D>> {
         let s = &self.stepper;
-        diagnostics::probe_pressure(
-            s.model.as_ref(),
-            self.particles(),
-            &s.list,
-            &s.domain,
-            point,
-        )
+        PointReader {
+            kernel: s.model.as_ref(),
+            particles: self.particles(),
+            list: &s.list,
+            domain: &s.domain,
+        }
     }
 
     /// Why no fluid can ever reach `point` (what a probe point is expected to be; see

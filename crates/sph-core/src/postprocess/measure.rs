@@ -123,54 +123,13 @@ pub fn measure(folder: &RunFolder, request: &Request) -> Result<Measurement> {
 
 fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<Measurement> {
     let case = &folder.case;
-    let points = points_of::<D>(&request.points)?;
-    let gauges = (request.elevations.iter().enumerate())
-        .map(|(k, x)| Gauge::<D>::at(case, x, &format!("elevation[{k}]")))
-        .collect::<Result<Vec<_>>>()?;
-    let sections = sections_of::<D>(&request.sections, case.dx())?;
-    let mut series: Vec<Series> = (request.quantities.iter())
-        .map(|q| Series::new(q.name(), points.len(), q.components(D)))
-        .collect();
-    if !gauges.is_empty() {
-        series.push(Series::new("elevation", gauges.len(), 1));
-    }
-    if !sections.is_empty() {
-        series.push(Series::new("volume_flow", sections.len(), 1));
-        series.push(Series::new("mass_flow", sections.len(), 1));
-    }
-    let per_snapshot: usize = series.iter().map(|s| s.count * s.components).sum();
-    if per_snapshot.saturating_mul(folder.snapshots.len()) > MAX_VALUES {
-        return Err(SphError::invalid(
-            "points",
-            format!(
-                "{per_snapshot} values at each of {} snapshots",
-                folder.snapshots.len()
-            ),
-            format!("at most {MAX_VALUES} values in all (fewer points or fields)"),
-        ));
-    }
+    let readers = Readers::<D>::new(folder, request)?;
+    let mut series = readers.series();
     let kernel = case.particles.kernel.with_length(case.h(), D);
     let (mut times, mut steps) = (Vec::new(), Vec::new());
     for (path, _) in &folder.snapshots {
         let frame = Frame::<D>::read(path, case, kernel.support_radius())?;
-        let kernel = kernel.as_ref();
-        let mut rows: Vec<Vec<f64>> = (request.quantities.iter())
-            .map(|q| read_points(&frame, kernel, *q, &points))
-            .collect();
-        if !gauges.is_empty() {
-            rows.push(
-                gauges
-                    .par_iter()
-                    .map(|g| elevation(&frame, kernel, g))
-                    .collect(),
-            );
-        }
-        if !sections.is_empty() {
-            let flows: Vec<[f64; 2]> = (sections.iter()).map(|s| flow(&frame, kernel, s)).collect();
-            rows.push(flows.iter().map(|f| f[0]).collect());
-            rows.push(flows.iter().map(|f| f[1]).collect());
-        }
-        for (s, row) in series.iter_mut().zip(rows) {
+        for (s, row) in series.iter_mut().zip(readers.rows(&frame, kernel.as_ref())) {
             s.values.extend(row);
         }
         times.push(frame.time);
@@ -183,6 +142,76 @@ fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<M
         request: request.clone(),
         series,
     })
+}
+
+/// What a request reads in each snapshot, checked and built once.
+struct Readers<const D: usize> {
+    points: Vec<Vector<D>>,
+    quantities: Vec<Quantity>,
+    gauges: Vec<Gauge<D>>,
+    sections: Vec<Section<D>>,
+}
+
+impl<const D: usize> Readers<D> {
+    /// The readers of `request` in the run of `folder`, refused when the values of all
+    /// its snapshots would not fit in [`MAX_VALUES`].
+    fn new(folder: &RunFolder, request: &Request) -> Result<Self> {
+        let case = &folder.case;
+        let readers = Self {
+            points: points_of::<D>(&request.points)?,
+            quantities: request.quantities.clone(),
+            gauges: (request.elevations.iter().enumerate())
+                .map(|(k, x)| Gauge::<D>::at(case, x, &format!("elevation[{k}]")))
+                .collect::<Result<Vec<_>>>()?,
+            sections: sections_of::<D>(&request.sections, case.dx())?,
+        };
+        let per_snapshot: usize = (readers.series().iter())
+            .map(|s| s.count * s.components)
+            .sum();
+        let snapshots = folder.snapshots.len();
+        if per_snapshot.saturating_mul(snapshots) > MAX_VALUES {
+            return Err(SphError::invalid(
+                "points",
+                format!("{per_snapshot} values at each of {snapshots} snapshots"),
+                format!("at most {MAX_VALUES} values in all (fewer points or fields)"),
+            ));
+        }
+        Ok(readers)
+    }
+
+    /// The series, empty, in the order of [`Self::rows`].
+    fn series(&self) -> Vec<Series> {
+        let mut series: Vec<Series> = (self.quantities.iter())
+            .map(|q| Series::new(q.name(), self.points.len(), q.components(D)))
+            .collect();
+        if !self.gauges.is_empty() {
+            series.push(Series::new("elevation", self.gauges.len(), 1));
+        }
+        if !self.sections.is_empty() {
+            series.push(Series::new("volume_flow", self.sections.len(), 1));
+            series.push(Series::new("mass_flow", self.sections.len(), 1));
+        }
+        series
+    }
+
+    /// Each series' values in `frame`.
+    fn rows(&self, frame: &Frame<D>, kernel: &dyn Smoothing) -> Vec<Vec<f64>> {
+        let mut rows: Vec<Vec<f64>> = (self.quantities.iter())
+            .map(|q| read_points(frame, kernel, *q, &self.points))
+            .collect();
+        if !self.gauges.is_empty() {
+            let gauges = self.gauges.par_iter();
+            rows.push(gauges.map(|g| elevation(frame, kernel, g)).collect());
+        }
+        if !self.sections.is_empty() {
+            let flows: Vec<[f64; 2]> = (self.sections.iter())
+                .map(|s| flow(frame, kernel, s))
+                .collect();
+            rows.push(flows.iter().map(|f| f[0]).collect());
+            rows.push(flows.iter().map(|f| f[1]).collect());
+        }
+        rows
+    }
 }
 
 /// The elevation gauge `g` reads in `frame`.

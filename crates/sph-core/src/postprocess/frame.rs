@@ -16,6 +16,9 @@ use crate::particles::{Kind, Particles, Vector};
 use crate::physics::kernel::Smoothing;
 use std::path::Path;
 
+/// A snapshot read at points, with a kernel chosen at run time.
+pub type SnapshotReader<'a, const D: usize> = PointReader<'a, D, dyn Smoothing + 'a>;
+
 /// A snapshot's particles, sorted for point queries.
 pub struct Frame<const D: usize> {
     pub time: f64,
@@ -50,10 +53,7 @@ impl<const D: usize> Frame<D> {
     }
 
     /// The snapshot read at points with `kernel`, by the in-run rules.
-    pub fn reader<'a>(
-        &'a self,
-        kernel: &'a dyn Smoothing,
-    ) -> PointReader<'a, D, dyn Smoothing + 'a> {
+    pub fn reader<'a>(&'a self, kernel: &'a dyn Smoothing) -> SnapshotReader<'a, D> {
         PointReader {
             kernel,
             particles: &self.particles,
@@ -65,8 +65,7 @@ impl<const D: usize> Frame<D> {
 
 /// The particles of `snapshot` with the fields the probes read.
 fn particles_of<const D: usize>(snapshot: &Snapshot) -> std::result::Result<Particles<D>, String> {
-    let field = |name: &str| snapshot.fields.iter().find(|f| f.0 == name).map(|f| &f.1);
-    let floats = |name: &str| match field(name) {
+    let floats = |name: &str| match snapshot.field(name) {
         Some(Field::Float { values, .. }) => Ok(values.as_slice()),
         _ => Err(format!(
             "the snapshot has no `{name}` field{}",
@@ -79,7 +78,7 @@ fn particles_of<const D: usize>(snapshot: &Snapshot) -> std::result::Result<Part
     };
     let (x, u) = (floats("position")?, floats("velocity")?);
     let (rho, p, mass) = (floats("density")?, floats("pressure")?, floats("mass")?);
-    let Some(Field::Byte(kind)) = field("kind") else {
+    let Some(Field::Byte(kind)) = snapshot.field("kind") else {
         return Err("the snapshot has no `kind` field".into());
     };
     let vector = |v: &[f64], i: usize| Vector::<D>::from_column_slice(&v[i * D..(i + 1) * D]);

@@ -10,7 +10,7 @@
 //! wall) has no value: NaN, an empty reading and not a zero. A dry line reads its
 //! bottom, as an in-run gauge does.
 
-use super::frame::Frame;
+use super::frame::{Frame, SnapshotReader};
 use super::points::MAX_POINTS;
 use super::RunFolder;
 use crate::case::SectionConfig;
@@ -127,7 +127,7 @@ fn measure_in<const D: usize>(folder: &RunFolder, request: &Request) -> Result<M
     let mut series = readers.series();
     let kernel = case.particles.kernel.with_length(case.h(), D);
     let (mut times, mut steps) = (Vec::new(), Vec::new());
-    for (path, _) in &folder.snapshots {
+    for path in &folder.snapshots {
         let frame = Frame::<D>::read(path, case, kernel.support_radius())?;
         for (s, row) in series.iter_mut().zip(readers.rows(&frame, kernel.as_ref())) {
             s.values.extend(row);
@@ -196,17 +196,16 @@ impl<const D: usize> Readers<D> {
 
     /// Each series' values in `frame`.
     fn rows(&self, frame: &Frame<D>, kernel: &dyn Smoothing) -> Vec<Vec<f64>> {
+        let reader = frame.reader(kernel);
         let mut rows: Vec<Vec<f64>> = (self.quantities.iter())
-            .map(|q| read_points(frame, kernel, *q, &self.points))
+            .map(|q| read_points(&reader, *q, &self.points))
             .collect();
         if !self.gauges.is_empty() {
             let gauges = self.gauges.par_iter();
-            rows.push(gauges.map(|g| elevation(frame, kernel, g)).collect());
+            rows.push(gauges.map(|g| elevation(&reader, g)).collect());
         }
         if !self.sections.is_empty() {
-            let flows: Vec<[f64; 2]> = (self.sections.iter())
-                .map(|s| flow(frame, kernel, s))
-                .collect();
+            let flows: Vec<[f64; 2]> = (self.sections.iter()).map(|s| flow(&reader, s)).collect();
             rows.push(flows.iter().map(|f| f[0]).collect());
             rows.push(flows.iter().map(|f| f[1]).collect());
         }
@@ -214,18 +213,16 @@ impl<const D: usize> Readers<D> {
     }
 }
 
-/// The elevation gauge `g` reads in `frame`.
-fn elevation<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, g: &Gauge<D>) -> f64 {
-    let gamma: Vec<f64> = (g.points.iter())
-        .map(|x| frame.reader(kernel).fluid_fraction(x))
-        .collect();
+/// The elevation gauge `g` reads in a snapshot.
+fn elevation<const D: usize>(reader: &SnapshotReader<D>, g: &Gauge<D>) -> f64 {
+    let gamma: Vec<f64> = g.points.iter().map(|x| reader.fluid_fraction(x)).collect();
     g.elevation(&gamma)
 }
 
-/// The volume and mass flow through section `s` in `frame`.
-fn flow<const D: usize>(frame: &Frame<D>, kernel: &dyn Smoothing, s: &Section<D>) -> [f64; 2] {
+/// The volume and mass flow through section `s` in a snapshot.
+fn flow<const D: usize>(reader: &SnapshotReader<D>, s: &Section<D>) -> [f64; 2] {
     let densities: Vec<[f64; 2]> = (s.points.par_iter())
-        .map(|x| frame.reader(kernel).flow_density(x, &s.normal))
+        .map(|x| reader.flow_density(x, &s.normal))
         .collect();
     s.flow(&densities)
 }
@@ -269,12 +266,10 @@ fn points_of<const D: usize>(points: &[Vec<f64>]) -> Result<Vec<Vector<D>>> {
 
 /// `q` at each of `points`, its components in a row; NaN where no fluid is in reach.
 fn read_points<const D: usize>(
-    frame: &Frame<D>,
-    kernel: &dyn Smoothing,
+    reader: &SnapshotReader<D>,
     q: Quantity,
     points: &[Vector<D>],
 ) -> Vec<f64> {
-    let reader = frame.reader(kernel);
     let rows: Vec<Vec<f64>> = points
         .par_iter()
         .map(|x| match q {

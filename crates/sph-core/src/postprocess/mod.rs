@@ -19,8 +19,8 @@ use std::path::{Path, PathBuf};
 pub struct RunFolder {
     pub dir: PathBuf,
     pub case: Case,
-    /// The snapshot files with their times, in index order.
-    pub snapshots: Vec<(PathBuf, f64)>,
+    /// The snapshot files, in index (time) order.
+    pub snapshots: Vec<PathBuf>,
 }
 
 impl RunFolder {
@@ -39,7 +39,7 @@ impl RunFolder {
         let case = Case::from_file(&dir.join("case.toml"))?;
         let snapshots = listed_snapshots(&text)
             .into_iter()
-            .map(|(file, time)| (dir.join(file), time))
+            .map(|file| dir.join(file))
             .collect();
         Ok(Self {
             dir: dir.to_path_buf(),
@@ -49,30 +49,17 @@ impl RunFolder {
     }
 }
 
-/// The snapshot files and times of an XDMF index as deltasph writes it: each
-/// `<Grid Name="FILE" GridType="Uniform">` line followed by its `<Time Value="T"/>`.
-fn listed_snapshots(index: &str) -> Vec<(String, f64)> {
-    let attribute = |line: &str, key: &str| -> Option<String> {
-        let start = line.find(&format!("{key}=\""))? + key.len() + 2;
-        let len = line[start..].find('"')?;
-        Some(line[start..start + len].to_string())
-    };
-    let mut lines = index.lines();
-    let mut out = Vec::new();
-    while let Some(line) = lines.next() {
-        if !line.contains("GridType=\"Uniform\"") {
-            continue;
-        }
-        let file = attribute(line, "Name");
-        let time = lines
-            .next()
-            .and_then(|l| attribute(l, "Value"))
-            .and_then(|t| t.parse().ok());
-        if let (Some(file), Some(time)) = (file, time) {
-            out.push((file, time));
-        }
-    }
-    out
+/// The snapshot files of an XDMF index as deltasph writes it: the names of its
+/// `<Grid Name="FILE" GridType="Uniform">` lines, in time order.
+fn listed_snapshots(index: &str) -> Vec<String> {
+    (index.lines())
+        .filter(|line| line.contains("GridType=\"Uniform\""))
+        .filter_map(|line| {
+            let start = line.find("Name=\"")? + "Name=\"".len();
+            let len = line[start..].find('"')?;
+            Some(line[start..start + len].to_string())
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -80,7 +67,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_index_lists_files_and_times_in_order() {
+    fn the_index_lists_files_in_order() {
         let index = "<Xdmf>\n <Grid Name=\"particles\" GridType=\"Collection\">\n   \
                      <Grid Name=\"particles_000000.h5\" GridType=\"Uniform\">\n    \
                      <Time Value=\"0.000000000e0\"/>\n   </Grid>\n   \
@@ -88,10 +75,7 @@ mod tests {
                      <Time Value=\"2.500000000e-2\"/>\n   </Grid>\n";
         assert_eq!(
             listed_snapshots(index),
-            vec![
-                ("particles_000000.h5".to_string(), 0.0),
-                ("particles_000001.h5".to_string(), 0.025)
-            ]
+            vec!["particles_000000.h5", "particles_000001.h5"]
         );
     }
 }

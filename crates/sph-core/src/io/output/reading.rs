@@ -26,6 +26,13 @@ pub struct Snapshot {
     pub fields: Vec<(&'static str, Field)>,
 }
 
+impl Snapshot {
+    /// The field called `name`, if the file holds it.
+    pub fn field(&self, name: &str) -> Option<&Field> {
+        self.fields.iter().find(|f| f.0 == name).map(|f| &f.1)
+    }
+}
+
 const VECTORS: [&str; 4] = ["position", "velocity", "shifting_velocity", "normal"];
 const SCALARS: [&str; 4] = ["density", "pressure", "mass", "lambda"];
 const BYTES: [&str; 2] = ["kind", "free_surface"];
@@ -108,7 +115,7 @@ mod tests {
             (snapshot.time, snapshot.step, snapshot.dimension),
             (sim.time(), 1, 2)
         );
-        let field = |name: &str| &snapshot.fields.iter().find(|f| f.0 == name).unwrap().1;
+        let field = |name: &str| snapshot.field(name).unwrap();
         let xy: Vec<f64> = p.x.iter().flat_map(|x| [x[0], x[1]]).collect();
         assert_eq!(
             field("position"),

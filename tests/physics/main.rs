@@ -23,4 +23,5 @@ mod time_integration;
 mod validation;
 mod walls;
 mod water_wedge;
+mod wedge_entry;
 mod waves;

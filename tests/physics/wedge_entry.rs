@@ -17,7 +17,10 @@ const V: f64 = 1.0;
 /// (`docs/validation/data/wedge_entry_zhao_faltinsen1993.csv`).
 fn similarity_peak(beta_deg: f64) -> (f64, f64) {
     let (_, rows) = read_csv(&refdata("wedge_entry_zhao_faltinsen1993.csv"));
-    let row = rows.iter().find(|r| r[0] == beta_deg).expect("deadrise tabulated");
+    let row = rows
+        .iter()
+        .find(|r| r[0] == beta_deg)
+        .expect("deadrise tabulated");
     (row[1], row[2])
 }
 
@@ -69,7 +72,10 @@ fn wedge_entry(dx: f64) -> (Vec<f64>, Vec<(f64, f64)>) {
         }
         samples += 1;
     }
-    (profile.iter().map(|cp| cp / samples as f64).collect(), forces)
+    (
+        profile.iter().map(|cp| cp / samples as f64).collect(),
+        forces,
+    )
 }
 
 /// Measured at Δx = 0.01 m (V t/Δx = 5-10), c0 = 20 V: the largest mean Cp 6.2
@@ -86,7 +92,10 @@ fn a_wedge_entering_water_piles_it_up_to_the_similarity_solutions_pressure_peak(
     // thick, whose readings are noise (the similarity solution's pressure there is ~0)
     let (k, cp_max) = (profile.iter().copied().enumerate())
         .filter(|&(k, _)| zeta[k] <= 0.6)
-        .fold((0, f64::MIN), |a, (k, cp)| if cp > a.1 { (k, cp) } else { a });
+        .fold(
+            (0, f64::MIN),
+            |a, (k, cp)| if cp > a.1 { (k, cp) } else { a },
+        );
     let apex = profile[0];
     let mean = |early: bool| {
         let c: Vec<f64> = (forces.iter().filter(|f| (f.0 < 0.075) == early))
@@ -107,5 +116,8 @@ fn a_wedge_entering_water_piles_it_up_to_the_similarity_solutions_pressure_peak(
     // self-similar: the force grows as t (the impact's acoustic waves still ring at
     // V t/Δx = 5-10: +8.6% here, -0.8% at Δx = 0.0025 m); a force growing as t² or
     // staying constant would change C_F by +40% or -29% between the two halves
-    assert!((second / first - 1.0).abs() < 0.15, "C_F {first} then {second}");
+    assert!(
+        (second / first - 1.0).abs() < 0.15,
+        "C_F {first} then {second}"
+    );
 }

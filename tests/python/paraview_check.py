@@ -7,7 +7,8 @@ It opens the file with the reader ParaView picks for it (OpenDataFile), and prin
 one JSON object: the reader, the time steps and, per time step, the number of points
 and cells and the range of every point field. It then shows the last time step in a
 render view with the default representation, coloured by pressure, and saves it as
-a PNG, the picture a user gets after File > Open > Apply.
+a PNG, the picture a user gets after File > Open > Apply. Any file ParaView opens
+will do: the free-surface collection (surface.pvd) is coloured by its first field.
 """
 
 import json
@@ -56,7 +57,9 @@ def main(index, png):
     view.ViewTime = times[-1]
     Show(reader, view)
     display = GetDisplayProperties(reader, view)
-    ColorBy(display, ("POINTS", "pressure"))
+    # the particles by pressure; a mesh (the free surface) by its first field
+    fields = list(steps[-1]["fields"])
+    ColorBy(display, ("POINTS", "pressure" if "pressure" in fields else fields[0]))
     view.ResetCamera()
     Render(view)
     SaveScreenshot(png, view, ImageResolution=[640, 400])

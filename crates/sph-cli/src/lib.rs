@@ -20,6 +20,7 @@ mod check;
 mod measure;
 mod processes;
 mod summary;
+mod surface;
 
 use processes::Processes;
 
@@ -95,6 +96,10 @@ enum Command {
     /// run (the rules of the in-run probes, gauges and sections; NaN where no fluid is
     /// in reach) as CSV: a row per snapshot.
     Measure(measure::MeasureArgs),
+    /// Write the fluid's free surface at every snapshot of a finished run as a mesh
+    /// (2D: polylines; 3D: triangles), the ½ level of the fluid's kernel sum, into
+    /// `RUN/surface/` as VTK PolyData with a ParaView collection (`surface.pvd`).
+    Surface(surface::SurfaceArgs),
     /// Print the JSON Schema of the case file, for TOML editors (Taplo, Even Better
     /// TOML): save it and start a case file with `#:schema ./case.schema.json`.
     Schema,
@@ -198,6 +203,7 @@ pub fn main_with(program: &str, args: Vec<OsString>, after_help: Option<&str>) -
         }
         Command::Check { case, ranks } => check::check(&case, ranks),
         Command::Measure(args) => measure::run(args),
+        Command::Surface(args) => surface::run(args),
         Command::Preview { case, out, force } => preview(&case, out, force),
         Command::Schema => {
             print!("{}", sph_core::case::json_schema::case_schema());

@@ -21,6 +21,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::PySimulation>()?;
     m.add_function(wrap_pyfunction!(folder::read_snapshot, m)?)?;
     m.add_function(wrap_pyfunction!(postprocess::measure, m)?)?;
+    m.add_function(wrap_pyfunction!(postprocess::surface, m)?)?;
     m.add_function(wrap_pyfunction!(cli, m)?)?;
     m.add_function(wrap_pyfunction!(case_schema, m)?)?;
     m.add_function(wrap_pyfunction!(waves::regular_wave, m)?)?;
@@ -32,7 +33,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
 const PLOT_HELP: &str = "Also: deltasph plot <run folder> writes PNGs of its snapshots and \
                          time series (needs matplotlib).";
 
-/// Runs the command line (``deltasph run|check|preview|measure|schema ...``): ``args`` are the
+/// Runs the command line (``deltasph run|check|preview|measure|surface|schema ...``): ``args`` are the
 /// words after the program name. Returns the exit code, as ``sph-cli`` does.
 #[pyfunction]
 fn cli(py: Python<'_>, args: Vec<std::ffi::OsString>) -> u8 {

@@ -1,11 +1,13 @@
 //! Answers read from a finished run folder, for Python: the measure tool's series
-//! ([`sph_core::postprocess::measure`]) as numpy arrays.
+//! ([`sph_core::postprocess::measure`]) as numpy arrays, and the free-surface meshes
+//! ([`sph_core::postprocess::surface`]) written beside the run.
 
 use crate::errors::to_py;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sph_core::postprocess::measure::{measure as measure_run, Quantity, Request};
+use sph_core::postprocess::surface::{write_surfaces, Request as SurfaceRequest};
 use sph_core::postprocess::RunFolder;
 use std::path::PathBuf;
 
@@ -65,4 +67,28 @@ pub fn measure<'py>(
         PyArray1::from_vec(py, m.steps),
         series,
     ))
+}
+
+/// Writes the free surface of every snapshot of the run folder ``run`` as meshes, as
+/// ``sph-cli surface`` does: ``(collection, files)``, the paths of the ParaView
+/// collection and of the mesh files in time order.
+#[pyfunction]
+#[pyo3(signature = (run, spacing=None, level=0.5, out=None, overwrite=false))]
+pub fn surface(
+    py: Python<'_>,
+    run: PathBuf,
+    spacing: Option<f64>,
+    level: f64,
+    out: Option<PathBuf>,
+    overwrite: bool,
+) -> PyResult<(PathBuf, Vec<PathBuf>)> {
+    let request = SurfaceRequest {
+        spacing,
+        level,
+        out,
+        overwrite,
+    };
+    let written = py.detach(|| write_surfaces(&RunFolder::open(&run)?, &request));
+    let written = written.map_err(|e| to_py(py, e))?;
+    Ok((written.collection, written.files))
 }

@@ -7,3 +7,4 @@ mod common;
 mod measure;
 mod output_safety;
 mod restart;
+mod surface;

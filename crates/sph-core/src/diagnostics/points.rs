@@ -86,6 +86,17 @@ impl<const D: usize, K: Smoothing + ?Sized> PointReader<'_, D, K> {
         sum
     }
 
+    /// The walls' kernel sum `Γ_w = Σ_w W V_w` at `point` (½ on a flat wall's surface).
+    pub fn wall_fraction(&self, point: &Vector<D>) -> f64 {
+        let mut sum = 0.0;
+        self.for_near(point, |j, wv| {
+            if self.particles.kind[j] == Kind::Wall {
+                sum += wv
+            }
+        });
+        sum
+    }
+
     /// The volume and mass flow densities through a section at `point` along the unit
     /// `normal`: `[Σ_f (u_f·n) W_f V_f, Σ_f (u_f·n) W_f m_f] / (1 - Γ_w)`, with
     /// `Γ_w = Σ_w W_w V_w` the walls' kernel sum; zero inside a wall (`Γ_w >= ½`).

@@ -9,6 +9,7 @@
 pub mod frame;
 pub mod measure;
 pub mod points;
+pub mod surface;
 
 use crate::case::Case;
 use crate::error::{Result, SphError};

@@ -12,13 +12,14 @@ All quantities are SI. Arrays are copies in particle-id order (row i is always t
 particle created i-th), so they can be compared across steps and edited freely.
 
 ``sim.run(out="folder")`` writes the command line's run folder, ``ds.load("folder")``
-reads one back, ``ds.measure("folder", ...)`` reads fields at points from its snapshots, ``deltasph.plot`` draws it, ``ds.case_schema()`` is the case file's
-JSON Schema for editors.
+reads one back, ``ds.measure("folder", ...)`` reads fields at points from its snapshots,
+``ds.surface("folder")`` writes its free-surface meshes, ``deltasph.plot`` draws it,
+``ds.case_schema()`` is the case file's JSON Schema for editors.
 """
 
 from ._core import Simulation, __version__, case_schema, regular_wave
 from .errors import ConfigError, ConfigKeyError, InstabilityError
-from .runs import Measurement, RunFolder, Snapshot, load, measure
+from .runs import Measurement, RunFolder, Snapshot, load, measure, surface
 
 #: Values of ``Simulation.kind``.
 FLUID = 0
@@ -38,5 +39,6 @@ __all__ = [
     "Snapshot",
     "load",
     "measure",
+    "surface",
     "__version__",
 ]

@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
-__all__ = ["Simulation", "read_snapshot", "measure", "cli", "case_schema", "regular_wave", "__version__"]
+__all__ = ["Simulation", "read_snapshot", "measure", "surface", "cli", "case_schema", "regular_wave", "__version__"]
 
 _Progress = Union[bool, None, Callable[[float, int], object]]
 
@@ -185,6 +185,16 @@ def measure(
     """``(times, steps, series)`` measured at ``points``, on the vertical lines
     ``elevations`` and through the ``sections`` (their corners) in every snapshot of the
     run folder ``run``; NaN where dry."""
+
+def surface(
+    run: Union[str, PathLike[str]],
+    spacing: Optional[float] = None,
+    level: float = 0.5,
+    out: Optional[Union[str, PathLike[str]]] = None,
+    overwrite: bool = False,
+) -> tuple[str, list[str]]:
+    """Writes the free surface of every snapshot of the run folder ``run`` as meshes
+    (``sph-cli surface``): ``(collection, files)``."""
 
 def cli(args: list[str]) -> int:
     """Runs the ``deltasph`` command line with ``args``; returns its exit code."""

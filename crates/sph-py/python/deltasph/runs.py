@@ -127,6 +127,10 @@ class RunFolder:
         """:func:`measure` on this run folder."""
         return measure(self.path, points, **options)
 
+    def surface(self, **options: Any) -> pathlib.Path:
+        """:func:`surface` on this run folder."""
+        return surface(self.path, **options)
+
     @property
     def restart(self) -> Optional[pathlib.Path]:
         """The newest restart file (for ``Simulation.from_restart``), or None."""
@@ -229,3 +233,21 @@ def measure(run: PathLike, points: Optional[ArrayLike] = None, *,
         str(run), all_points.tolist(), wanted, lines.tolist(), corners.tolist(),
         None if out is None else (str(out), overwrite))
     return Measurement(times, steps, all_points, lines, corners, series)
+
+
+def surface(run: PathLike, *, spacing: Optional[float] = None, level: float = 0.5,
+            out: Optional[PathLike] = None, overwrite: bool = False) -> pathlib.Path:
+    """Writes the fluid's free surface at every snapshot of the run folder ``run`` as a
+    mesh, as ``sph-cli surface`` does, and returns the ParaView collection that lists
+    them (``RUN/surface/surface.pvd`` unless ``out`` names another folder).
+
+    The surface is the ``level`` (½: where the fluid's volume ends) of the fluid's kernel
+    sum sampled on a grid of ``spacing`` (default: the particle spacing); 2D meshes are
+    polylines, 3D meshes triangles, each point carrying ``wall_fraction`` (the walls'
+    kernel sum: ½ where the mesh runs along a wetted wall, 0 on the free surface).
+    Earlier meshes there are replaced only with ``overwrite``; a folder holding files the
+    tool did not write is refused. ``pyvista.read(path)`` reads the collection (a
+    ``MultiBlock`` per time) or one ``surface_NNNNNN.vtp``."""
+    collection, _ = _core.surface(str(run), spacing, level,
+                                  None if out is None else str(out), overwrite)
+    return pathlib.Path(collection)

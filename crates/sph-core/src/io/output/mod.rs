@@ -10,6 +10,7 @@
 pub mod atomic;
 pub mod compression;
 pub mod manifest;
+pub mod polydata;
 pub mod reading;
 pub mod snapshot;
 

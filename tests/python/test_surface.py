@@ -1,7 +1,7 @@
 """``ds.surface`` and ``deltasph surface``: the free surface of every snapshot of a run
 as meshes beside it. In 2D the closed outlines enclose the fluid's volume (the ½ level
 of the kernel sum is where the volume ends); ParaView opens the collection as a time
-series of line cells; pyvista reads it where it is installed."""
+series of line cells; pyvista reads it, and a snapshot becomes a pyvista point cloud."""
 
 import subprocess
 import xml.etree.ElementTree as ElementTree
@@ -97,3 +97,16 @@ def test_pyvista_reads_a_surface_mesh(run):
     mesh = pyvista.read(collection.parent / "surface_000004.vtp")
     points, cells, _ = polylines(collection.parent / "surface_000004.vtp")
     assert mesh.n_points == len(points) and mesh.n_lines == len(cells)
+
+
+def test_a_snapshot_becomes_a_pyvista_point_cloud(run):
+    pytest.importorskip("pyvista")
+    snap = ds.load(run)[-1]
+    cloud = snap.to_pyvista()
+    n = len(snap["id"])
+    assert cloud.n_points == n and cloud.n_verts == n
+    np.testing.assert_array_equal(cloud.points[:, :2], snap["position"])
+    assert np.all(cloud.points[:, 2] == 0.0)
+    for name in ("pressure", "velocity", "kind", "mass"):
+        np.testing.assert_array_equal(cloud.point_data[name], snap[name])
+    assert cloud.field_data["time"][0] == snap.time

@@ -58,6 +58,26 @@ class Snapshot(Dict[str, npt.NDArray[Any]]):
         return (f"Snapshot('{self.path.name}', t = {self.time:.6g} s, step {self.step}, "
                 f"{len(self['id'])} particles, fields {sorted(self)})")
 
+    def to_pyvista(self) -> Any:
+        """The particles as a ``pyvista.PolyData``: one vertex cell per particle (2D at
+        z = 0), every other field as point data, ``time`` in its field data. Needs pyvista
+        (``pip install deltasph[pyvista]``)::
+
+            cloud = ds.load("dam_out")[-1].to_pyvista()
+            cloud.plot(scalars="pressure")   # or cloud.threshold(..., scalars="kind")
+        """
+        import pyvista  # type: ignore[import-untyped, import-not-found, unused-ignore]
+
+        x = self["position"]
+        points = np.zeros((len(x), 3))
+        points[:, : x.shape[1]] = x
+        cloud = pyvista.PolyData(points)
+        for name, values in self.items():
+            if name != "position":
+                cloud.point_data[name] = values
+        cloud.field_data["time"] = [self.time]
+        return cloud
+
 
 class RunFolder:
     """A run folder: ``times`` (to 10 significant digits; a snapshot's own ``time`` is

@@ -79,8 +79,8 @@ enum Command {
         #[arg(long, value_name = "P", value_parser = clap::value_parser!(u32).range(1..=100_000))]
         ranks: Option<u32>,
     },
-    /// Write the initial particles of a case (an HDF5/XDMF snapshot for ParaView and,
-    /// in 2D, preview.png) without running it.
+    /// Write the initial particles of a case (an HDF5/XDMF snapshot for ParaView and
+    /// preview.png: 2D as it is, 3D as a side and a top view) without running it.
     Preview {
         /// The case file.
         case: PathBuf,

@@ -47,6 +47,8 @@ fn preview_writes_the_initial_particles_and_a_picture() {
     );
     let png = std::fs::read(out_dir.join("preview.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    // 1200 px wide (the IHDR chunk's width, big-endian at bytes 16-19)
+    assert_eq!(u32::from_be_bytes(png[16..20].try_into().unwrap()), 1200);
     let snapshot = hdf5::File::open(out_dir.join("particles_000000.h5")).unwrap();
     let x = snapshot.dataset("position").unwrap().shape();
     // 24 × 12 fluid particles at Δx = 0.05 and the tank's wall layers, in 3D points
@@ -506,4 +508,27 @@ fn a_floating_box_s_budget_closes_from_its_time_series() {
         .map(|r| (closure(r) - start).abs())
         .fold(0.0, f64::max);
     assert!(worst < 0.01 * given, "{worst} against {given}");
+}
+
+/// A 3D case's preview: the picture as two projections, wider than tall.
+#[test]
+fn preview_draws_a_3d_case() {
+    let dir = scratch("preview3d");
+    let case = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/dam_break_3d.toml"
+    );
+    let out_dir = dir.join("look");
+    let out = cli(&["preview", case, "--out", out_dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let png = std::fs::read(out_dir.join("preview.png")).unwrap();
+    let (w, h) = (
+        u32::from_be_bytes(png[16..20].try_into().unwrap()),
+        u32::from_be_bytes(png[20..24].try_into().unwrap()),
+    );
+    assert!(w == 1200 && h > 100 && h < w, "{w} × {h}");
 }

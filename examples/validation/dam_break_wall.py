@@ -30,6 +30,8 @@ import tomllib
 
 import numpy as np
 
+from sampling import running_mean
+
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 OUT = ROOT / "docs" / "validation"
@@ -81,11 +83,6 @@ def mean_over(t, p, window):
     return float(np.trapezoid(p[w], t[w]) / (t[w][-1] - t[w][0]))
 
 
-def running_mean(t, p, width):
-    lo = np.searchsorted(t, t - 0.5 * width, side="left")
-    hi = np.searchsorted(t, t + 0.5 * width, side="right")
-    sums = np.concatenate([[0.0], np.cumsum(p)])
-    return (sums[hi] - sums[lo]) / (hi - lo)
 
 
 def read_refdata(name):

@@ -43,3 +43,16 @@ def plot_forces(path, curves, title, time_label, drag_limits=None):
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def pressure_field(ax, x, p, fluid, vmax, xlim, ylim, title):
+    """Particles on `ax`: the `fluid` ones (a mask) coloured by `p` from 0 to `vmax`,
+    the walls grey; returns the fluid's scatter (for a colour bar)."""
+    drawn = ax.scatter(x[fluid, 0], x[fluid, 1], c=p[fluid], s=1.5, cmap="viridis", vmin=0,
+                       vmax=vmax)
+    ax.scatter(x[~fluid, 0], x[~fluid, 1], c="0.55", s=1)
+    ax.set_aspect("equal")
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    ax.set_title(title)
+    return drawn

@@ -37,3 +37,11 @@ def body_force(sim, name):
     """The fluid's force on the body `name`, pressure and viscous."""
     load = sim.loads()[name]
     return np.asarray(load["pressure"]) + np.asarray(load["viscous"])
+
+
+def running_mean(t, f, width):
+    """Mean of the samples of f within width/2 of each time t (sorted)."""
+    lo = np.searchsorted(t, t - 0.5 * width, side="left")
+    hi = np.searchsorted(t, t + 0.5 * width, side="right")
+    sums = np.concatenate([[0.0], np.cumsum(f)])
+    return (sums[hi] - sums[lo]) / (hi - lo)

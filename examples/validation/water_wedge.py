@@ -29,6 +29,8 @@ import tomllib
 import numpy as np
 
 import deltasph as ds
+from records import pressure_field
+from sampling import running_mean
 
 HERE = pathlib.Path(__file__).resolve().parent
 OUT = HERE.parents[1] / "docs" / "validation"
@@ -67,12 +69,6 @@ def run(n, diffusion, c0=20.0):
     return np.array(t), np.nan_to_num(np.array(p)), wall, sim
 
 
-def running_mean(t, p, width):
-    """Mean of the samples of p within width/2 of each time."""
-    lo = np.searchsorted(t, t - 0.5 * width, side="left")
-    hi = np.searchsorted(t, t + 0.5 * width, side="right")
-    sums = np.concatenate([[0.0], np.cumsum(p)])
-    return (sums[hi] - sums[lo]) / (hi - lo)
 
 
 def between(t, window):
@@ -200,16 +196,10 @@ def field_plot(sim, n):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    x, p = sim.positions, sim.pressure
-    fluid = sim.kind == ds.FLUID
     fig, ax = plt.subplots(figsize=(9, 4.5))
-    s = ax.scatter(x[fluid, 0], x[fluid, 1], c=p[fluid] / (0.5 * RHO0 * U**2), s=2,
-                   cmap="viridis", vmin=0, vmax=4)
-    ax.scatter(x[~fluid, 0], x[~fluid, 1], c="0.5", s=1)
-    ax.set_aspect("equal")
-    ax.set_xlim(-0.8, 0.8)
-    ax.set_ylim(-0.05, 0.4)
-    ax.set_title(f"δ-SPH, H/Δx = {n}, t = {sim.time:.2f} s: p / ½ρ0U²")
+    s = pressure_field(ax, sim.positions, sim.pressure / (0.5 * RHO0 * U**2),
+                       sim.kind == ds.FLUID, 4, (-0.8, 0.8), (-0.05, 0.4),
+                       f"δ-SPH, H/Δx = {n}, t = {sim.time:.2f} s: p / ½ρ0U²")
     fig.colorbar(s, ax=ax)
     fig.tight_layout()
     fig.savefig(OUT / "water_wedge_field.png", dpi=110)

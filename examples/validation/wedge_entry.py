@@ -35,7 +35,8 @@ import tomllib
 import numpy as np
 
 import deltasph as ds
-from records import write_csv, write_table
+from records import pressure_field, write_csv, write_table
+from sampling import running_mean
 
 HERE = pathlib.Path(__file__).resolve().parent
 OUT = HERE.parents[1] / "docs" / "validation"
@@ -94,12 +95,6 @@ def run(dx, c0=20.0, diffusion="delta_sph"):
     return np.array(t), np.array(force), np.array(cp), time.perf_counter() - start, sim
 
 
-def running_mean(t, f, width):
-    """Mean of the samples of f within width/2 of each time."""
-    lo = np.searchsorted(t, t - 0.5 * width, side="left")
-    hi = np.searchsorted(t, t + 0.5 * width, side="right")
-    sums = np.concatenate([[0.0], np.cumsum(f)])
-    return (sums[hi] - sums[lo]) / (hi - lo)
 
 
 def measure(t, force, cp, dx, c0):
@@ -189,14 +184,8 @@ def plot_fields(fields):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, len(fields), figsize=(6 * len(fields), 3.6))
     for ax, (label, (x, p, kind)) in zip(np.atleast_1d(axes), fields.items()):
-        fluid = kind == ds.FLUID
-        s = ax.scatter(x[fluid, 0], x[fluid, 1], c=p[fluid] / (0.5 * RHO0 * V**2), s=1.5,
-                       cmap="viridis", vmin=0, vmax=8)
-        ax.scatter(x[~fluid, 0], x[~fluid, 1], c="0.6", s=1)
-        ax.set_aspect("equal")
-        ax.set_xlim(-0.4, 0.4)
-        ax.set_ylim(-0.2, 0.15)
-        ax.set_title(f"{label}, Δx = 0.005 m, t = 0.1 s: p / ½ρ0V²")
+        s = pressure_field(ax, x, p / (0.5 * RHO0 * V**2), kind == ds.FLUID, 8, (-0.4, 0.4),
+                           (-0.2, 0.15), f"{label}, Δx = 0.005 m, t = 0.1 s: p / ½ρ0V²")
         fig.colorbar(s, ax=ax, shrink=0.8)
     fig.tight_layout()
     fig.savefig(OUT / "wedge_entry_field.png", dpi=110)

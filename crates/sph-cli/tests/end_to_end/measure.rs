@@ -2,7 +2,7 @@
 //! from the snapshots equal the run's own time series at the snapshot steps (to the series'
 //! ten printed digits), and the output file obeys the output-safety rules.
 
-use crate::common::{cli, scratch, small_case};
+use crate::common::{cli, scratch, small_case, small_run};
 
 /// The CSV `text` as its header and rows of numbers.
 fn table(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
@@ -102,12 +102,8 @@ fn measure_reads_the_probes_again_from_the_snapshots() {
 #[test]
 fn measure_refuses_bad_points_in_one_line() {
     let dir = scratch("measure-bad");
-    let case = small_case(&dir, "");
-    let run = dir.join("out");
-    let run = run.to_str().unwrap();
-    assert!(cli(&["run", &case, "--out", run, "--quiet"])
-        .status
-        .success());
+    let run = small_run(&dir);
+    let run = run.as_str();
     for (args, expected) in [
         (
             vec!["--line", "0,0", "1,0,0", "3"],

@@ -2,17 +2,13 @@
 //! them in time order, and the output-safety rules (its own files replaced only with
 //! --force, a folder holding a file it did not write refused, nothing removed).
 
-use crate::common::{cli, scratch, small_case};
+use crate::common::{cli, scratch, small_run};
 
 #[test]
 fn surface_writes_a_mesh_per_snapshot_and_keeps_what_it_did_not_write() {
     let dir = scratch("surface");
-    let case = small_case(&dir, "");
-    let run = dir.join("out");
-    let run = run.to_str().unwrap();
-    assert!(cli(&["run", &case, "--out", run, "--quiet"])
-        .status
-        .success());
+    let run = small_run(&dir);
+    let run = run.as_str();
     let first = cli(&["surface", run]);
     assert!(
         first.status.success(),

@@ -86,3 +86,14 @@ pub fn small_case(dir: &Path, extra: &str) -> String {
     std::fs::write(&path, text).unwrap();
     path.display().to_string()
 }
+
+/// [`small_case`] run into `dir/out` (snapshots at t = 0, 0.02, 0.04 and the end); the
+/// run folder's path.
+pub fn small_run(dir: &Path) -> String {
+    let case = small_case(dir, "");
+    let run = dir.join("out").display().to_string();
+    assert!(cli(&["run", &case, "--out", &run, "--quiet"])
+        .status
+        .success());
+    run
+}

@@ -22,7 +22,7 @@ use crate::diagnostics::PointReader;
 use crate::error::{Result, SphError};
 use crate::particles::{Kind, Vector};
 use crate::physics::kernel::Smoothing;
-use fast_surface_nets::ndshape::{RuntimeShape, Shape};
+use fast_surface_nets::ndshape::RuntimeShape;
 use fast_surface_nets::{surface_nets, SurfaceNetsBuffer};
 use rayon::prelude::*;
 
@@ -168,14 +168,9 @@ impl<const D: usize> ColourGrid<D> {
     /// Nets; the field's sign is negative inside, where the values exceed `level`).
     fn isosurface(&self, level: f64) -> (Vec<Vector<D>>, Vec<Vec<u32>>) {
         let dims: [u32; 3] = std::array::from_fn(|d| self.counts[d] as u32);
+        // the shape orders nodes as the grid does, the first axis fastest
         let shape = RuntimeShape::<u32, 3>::new(dims);
-        let sdf: Vec<f32> = (0..shape.size() as usize)
-            .map(|k| {
-                let [x, y, z] = shape.delinearize(k as u32);
-                let node = x as usize + self.counts[0] * (y as usize + self.counts[1] * z as usize);
-                (level - self.values[node]) as f32
-            })
-            .collect();
+        let sdf: Vec<f32> = self.values.iter().map(|v| (level - v) as f32).collect();
         let mut buffer = SurfaceNetsBuffer::default();
         surface_nets(&sdf, &shape, [0; 3], dims.map(|n| n - 1), &mut buffer);
         let points = (buffer.positions.iter())

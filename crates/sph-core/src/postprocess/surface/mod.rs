@@ -14,6 +14,7 @@ use super::RunFolder;
 use crate::error::{Result, SphError};
 use crate::io::output::polydata::{self, Cells, PolyData};
 use crate::physics::kernel::Smoothing;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// The collection file's name.
@@ -176,7 +177,8 @@ fn prepare(dir: &Path, overwrite: bool) -> Result<()> {
 fn is_ours(path: &Path) -> bool {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
     let named = name == COLLECTION || (name.starts_with("surface_") && name.ends_with(".vtp"));
-    let text = std::fs::read(path).unwrap_or_default();
-    let head = String::from_utf8_lossy(&text[..text.len().min(200)]);
-    named && head.starts_with("<?xml version=\"1.0\"?>\n<!-- deltasph ")
+    let marker = b"<?xml version=\"1.0\"?>\n<!-- deltasph ";
+    let mut head = [0u8; 36];
+    let read = std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head));
+    named && read.is_ok() && head.starts_with(marker)
 }

@@ -51,9 +51,18 @@ def wavenumber(omega, depth):
     return k
 
 
-def config(dx, cylinder):
+def config(dx, cylinder, changes=()):
+    """The case at spacing `dx`, with or without the cylinder, with `changes`
+    ("section.key=value", the value in TOML) applied."""
     with open(HERE / "submerged_cylinder.toml", "rb") as f:
         cfg = tomllib.load(f)
+    for change in changes:
+        path, value = change.split("=", 1)
+        *tables, key = path.strip().split(".")
+        node = cfg
+        for t in tables:
+            node = node[int(t)] if isinstance(node, list) else node.setdefault(t, {})
+        node[key] = tomllib.loads(f"v = {value.strip()}")["v"]
     cfg["particles"]["spacing"] = dx
     # the paddle at least the kernel support thick
     cfg["wall"][0]["lo"][0] = -max(0.1, 6 * dx)
@@ -63,12 +72,12 @@ def config(dx, cylinder):
     return cfg
 
 
-def run(dx, cylinder, folder, reuse):
+def run(dx, cylinder, folder, reuse, changes=()):
     """Runs the case into `folder` (with `reuse`, reads the series an earlier run left
     there, its wall time from the folder's file times); returns the series as a dict of
     columns, the wall time and the number of particles."""
     if not reuse:
-        sim = ds.Simulation(config(dx, cylinder))
+        sim = ds.Simulation(config(dx, cylinder, changes))
         start = time.perf_counter()
         sim.run(out=folder, force=True)
         wall = time.perf_counter() - start
@@ -162,6 +171,9 @@ def main():
     parser.add_argument("--quick", action="store_true", help="the coarse pair only")
     parser.add_argument("--scratch", type=pathlib.Path, default=pathlib.Path("submerged_cylinder_runs"),
                         help="where the runs' folders go (default ./submerged_cylinder_runs)")
+    parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                        help="change the case (repeatable; e.g. scheme.alpha=0): prints the "
+                             "analysis and writes no record")
     parser.add_argument("--reuse", action="store_true",
                         help="analyse the runs already in --scratch instead of running them")
     args = parser.parse_args()
@@ -174,8 +186,8 @@ def main():
           f"(x at {degrees(theory['Fx']):.1f}°, y at {degrees(theory['Fy']):.1f}°)")
     results, last = [], None
     for dx in (0.025,) if args.quick else (0.025, 0.0125):
-        with_cyl, wall, n = run(dx, True, args.scratch / f"cylinder_{dx}", args.reuse)
-        without, wall0, _ = run(dx, False, args.scratch / f"empty_{dx}", args.reuse)
+        with_cyl, wall, n = run(dx, True, args.scratch / f"cylinder_{dx}", args.reuse, args.set)
+        without, wall0, _ = run(dx, False, args.scratch / f"empty_{dx}", args.reuse, args.set)
         r = analyse(with_cyl, without, gauges, k)
         r.update(dx=dx, particles=n, wall=wall, wall_empty=wall0)
         results.append(r)
@@ -186,6 +198,8 @@ def main():
               f"|Fx|/A = {abs(r['Fx']):.1f} at {degrees(r['Fx']):.1f}°, "
               f"|Fy|/A = {abs(r['Fy']):.1f} at {degrees(r['Fy']):.1f}°; mean Fx {r['mean_fx']:.3f} N/m; "
               f"wall {wall:.0f} s + {wall0:.0f} s")
+    if args.set:
+        return
     rows = [[
         f"{r['dx']}", f"{RADIUS / r['dx']:.0f}", f"{r['particles']}", f"{r['kr']:.2%}",
         f"{r['kr_empty']:.2%}", f"{abs(r['T']):.3f}", f"{degrees(r['T']):.1f}°",

@@ -137,7 +137,8 @@ def test_energies_and_budget(coarse_dam_break):
     sim = ds.Simulation(coarse_dam_break)
     e = sim.energies()
     assert set(e) == {
-        "kinetic", "potential", "internal", "total", "bodies", "dissipated", "moving_work"
+        "kinetic", "potential", "internal", "total", "bodies", "dissipated", "moving_work",
+        "forcing_work",
     }
     assert e["dissipated"] is None and e["moving_work"] is None and e["bodies"] == 0.0
     # E_p of the column about y = 0: ρ0 g Σ V y = ρ0 g (2H·H) H/2, to lattice accuracy.

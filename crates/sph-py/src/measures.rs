@@ -12,7 +12,7 @@ use sph_core::motion::rigid::Pose;
 use sph_core::{Simulation, Vector};
 
 /// `kinetic`, `potential`, `internal`, `total`, `bodies` (the free bodies'), and
-/// `dissipated` and `moving_work` (None without the energy budget).
+/// `dissipated`, `moving_work` and `forcing_work` (None without the energy budget).
 pub(crate) fn energies<'py, const D: usize>(
     py: Python<'py>,
     s: &Simulation<D>,
@@ -29,6 +29,7 @@ pub(crate) fn energies<'py, const D: usize>(
     dict.set_item("bodies", bodies)?;
     dict.set_item("dissipated", budget.map(|b| 0.0 - b.work()))?;
     dict.set_item("moving_work", budget.map(|b| b.work_of_moving_walls()))?;
+    dict.set_item("forcing_work", budget.map(|b| b.work_of_forcing()))?;
     Ok(dict)
 }
 

@@ -20,7 +20,8 @@ pub struct DiagnosticsConfig {
     pub energy: bool,
     /// Also integrate the viscous, diffusive and wall powers (docs/theory.md §10), computed in
     /// the first evaluation of each step; with moving bodies the moving walls' power and
-    /// work, with free bodies their power and energy.
+    /// work, with free bodies their power and energy, with a body force or absorbers
+    /// their power and work.
     #[serde(default)]
     pub energy_budget: bool,
     /// Points of Shepard-interpolated pressure, inside the domain and not buried in a

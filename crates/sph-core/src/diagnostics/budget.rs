@@ -11,11 +11,13 @@ use crate::scheme::model::Powers;
 
 #[derive(Debug, Clone, Copy, Default)]
 pub struct EnergyBudget {
-    /// `∫ (P_V + P_D + P_W + P_M + P_B) dt` by the trapezoidal rule up to the start of
+    /// `∫ (P_V + P_D + P_W + P_M + P_B + P_F) dt` by the trapezoidal rule up to the start of
     /// the last step.
     pub dissipated: f64,
     /// `∫ P_M dt` alone, the same way: the work of the moving walls on the fluid.
     pub moving_work: f64,
+    /// `∫ P_F dt` alone, the same way: the work of the body force and the absorbers.
+    pub forcing_work: f64,
     /// `E_k + E_p + E_c` the removed particles carried out of the domain.
     pub removed_energy: f64,
     /// The powers at the start of the last step.
@@ -26,7 +28,7 @@ pub struct EnergyBudget {
 }
 
 impl EnergyBudget {
-    /// `∫ (P_V + P_D + P_W + P_M + P_B) dt` through the end of the last step.
+    /// `∫ (P_V + P_D + P_W + P_M + P_B + P_F) dt` through the end of the last step.
     pub fn work(&self) -> f64 {
         self.dissipated + self.pending * self.last.total()
     }
@@ -36,10 +38,16 @@ impl EnergyBudget {
         self.moving_work + self.pending * self.last.moving
     }
 
+    /// `∫ P_F dt` through the end of the last step.
+    pub fn work_of_forcing(&self) -> f64 {
+        self.forcing_work + self.pending * self.last.forcing
+    }
+
     /// Closes the pending interval with the powers `now` at the start of a step.
     pub fn advance(&mut self, now: Powers) {
         self.dissipated += 0.5 * self.pending * (self.last.total() + now.total());
         self.moving_work += 0.5 * self.pending * (self.last.moving + now.moving);
+        self.forcing_work += 0.5 * self.pending * (self.last.forcing + now.forcing);
         self.last = now;
         self.pending = 0.0;
     }

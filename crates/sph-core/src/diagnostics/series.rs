@@ -77,6 +77,7 @@ pub fn observers<const D: usize>(case: &Case, bodies: &[Body]) -> Vec<Box<dyn Ob
         list.push(Box::new(BudgetColumns {
             moving: moves(MotionChoice::Prescribed) || moves(MotionChoice::Free),
             free: moves(MotionChoice::Free),
+            forcing: case.forcing.is_some() || !case.absorber.is_empty(),
         }));
     }
     list.push(Box::new(Conservation {
@@ -171,11 +172,14 @@ impl<const D: usize> Observer<D> for EnergyColumns {
 }
 
 /// The energy budget's work and powers (see [`super::budget`]); with moving bodies the
-/// moving walls' power, and with free bodies their power and energy. The closure is
+/// moving walls' power, with free bodies their power and energy, and with a body force
+/// or absorbers their power and work (within the total work). The closure is
 /// `total + free_bodies_energy + removed_energy - work_of_dissipation_and_walls`.
 struct BudgetColumns {
     moving: bool,
     free: bool,
+    /// Whether a body force or an absorber works on the fluid.
+    forcing: bool,
 }
 
 impl<const D: usize> Observer<D> for BudgetColumns {
@@ -196,6 +200,9 @@ impl<const D: usize> Observer<D> for BudgetColumns {
         if self.free {
             out.extend(["free_body_power", "free_bodies_energy"].map(String::from));
         }
+        if self.forcing {
+            out.extend(["forcing_power", "forcing_work"].map(String::from));
+        }
     }
     fn values(&mut self, run: &mut dyn Measure<D>, out: &mut Vec<f64>) {
         let b = run.budget().unwrap_or_default();
@@ -211,6 +218,9 @@ impl<const D: usize> Observer<D> for BudgetColumns {
         }
         if self.free {
             out.extend([b.last.bodies, run.free_bodies_energy()]);
+        }
+        if self.forcing {
+            out.extend([b.last.forcing, b.work_of_forcing()]);
         }
     }
 }

@@ -8,9 +8,10 @@ pub mod field;
 
 use crate::case::Case;
 use crate::error::Result;
-use crate::particles::{Particles, Vector};
+use crate::particles::{Kind, Particles, Vector};
 use absorber::Absorber;
 use field::BodyForce;
+use rayon::prelude::*;
 
 /// The body force and the absorbers of a run.
 pub struct Forcing<const D: usize> {
@@ -26,6 +27,18 @@ impl<const D: usize> Forcing<D> {
             .map(|a| Absorber::new(case, a))
             .collect();
         Ok((field.is_some() || !absorbers.is_empty()).then_some(Self { field, absorbers }))
+    }
+
+    /// Their power on the fluid at time `t`, `P_F = Σ_i m_i u_i·f_i` (the energy
+    /// budget's term; computed only when a budget is kept).
+    pub fn power(&self, p: &Particles<D>, t: f64) -> f64 {
+        let mut f = vec![Vector::<D>::zeros(); p.len()];
+        self.add(p, t, &mut f);
+        (0..p.len())
+            .into_par_iter()
+            .filter(|&i| p.kind[i] == Kind::Fluid)
+            .map(|i| p.mass[i] * p.u[i].dot(&f[i]))
+            .sum()
     }
 
     /// Adds the terms at time `t` to the fluid's rates `du`.

@@ -112,6 +112,8 @@ fn write_h5<const D: usize>(
             b.last.moving,
             b.last.bodies,
             b.moving_work,
+            b.last.forcing,
+            b.forcing_work,
         ];
         file.new_attr::<f64>()
             .shape(v.len())
@@ -359,10 +361,11 @@ impl Reader<'_> {
         let v: Vec<f64> = a
             .read_raw()
             .map_err(|e| self.corrupt(format!("attribute energy_budget ({e})")))?;
-        // 6 in files written before moving walls and free bodies had powers
-        if v.len() != 6 && v.len() != 9 {
+        // 6 in files written before moving walls and free bodies had powers, 9 before
+        // the body force and the absorbers had
+        if ![6, 9, 11].contains(&v.len()) {
             return Err(self.corrupt(format!(
-                "energy_budget holds {} values, expected 9",
+                "energy_budget holds {} values, expected 11",
                 v.len()
             )));
         }
@@ -373,8 +376,11 @@ impl Reader<'_> {
             ..Default::default()
         };
         (b.last.viscous, b.last.diffusive, b.last.wall) = (v[1], v[2], v[3]);
-        if let [moving, bodies, work] = v[6..] {
+        if let [moving, bodies, work, ..] = v[6..] {
             (b.last.moving, b.last.bodies, b.moving_work) = (moving, bodies, work);
+        }
+        if let [forcing, work] = v[9..] {
+            (b.last.forcing, b.forcing_work) = (forcing, work);
         }
         Ok(Some(b))
     }

@@ -305,7 +305,7 @@ impl<const D: usize, K: Kernel, Df: DensityDiffusion<D>, V: Viscosity> Scheme<D,
             diffusive: m * particles.p[i] / (rho * rho) * row.drho_diff,
             wall: -m / rho * (u.dot(&s.wall_pressure) - moved.wall_pressure),
             moving: m / rho * (moved.viscous * k - moved.pair_pressure),
-            bodies: 0.0,
+            ..Powers::default()
         }
     }
 

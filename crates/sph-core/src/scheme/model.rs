@@ -76,11 +76,15 @@ pub struct Powers {
     /// `P_B = Σ_b (F_b·V_b + M_b·Ω_b) - Σ c (dL/dt)²`, filled in by the stepper (the
     /// scheme leaves it zero).
     pub bodies: f64,
+    /// Power of the body force and the absorbers on the fluid,
+    /// `P_F = Σ_i m_i u_i·f_i` with `f_i` the acceleration they add (an absorber's
+    /// `-β w u_i` takes energy out), filled in by the stepper.
+    pub forcing: f64,
 }
 
 impl Powers {
     pub fn total(&self) -> f64 {
-        self.viscous + self.diffusive + self.wall + self.moving + self.bodies
+        self.viscous + self.diffusive + self.wall + self.moving + self.bodies + self.forcing
     }
 }
 
@@ -260,6 +264,7 @@ impl Powers {
             wall: self.wall + other.wall,
             moving: self.moving + other.moving,
             bodies: self.bodies + other.bodies,
+            forcing: self.forcing + other.forcing,
         }
     }
 }

@@ -299,9 +299,6 @@ impl<const D: usize> Simulation<D> {
         if case.scheme.turbulence == crate::case::TurbulenceChoice::DeltaLes {
             why.push("δ-LES-SPH's shifting velocity δu moves particles without a power term");
         }
-        if self.stepper.forcing.is_some() {
-            why.push("the body force of [forcing] does work that no power term counts");
-        }
         if self.stepper.open.is_some() {
             why.push("open boundaries set the buffers' state and add fluid without a flux term");
         }

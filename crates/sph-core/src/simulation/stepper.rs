@@ -207,7 +207,8 @@ impl<const D: usize> Stepper<D> {
         let owned = self.ranks.as_ref().map(|r| r.owned().to_vec());
         let local = self.rates(state).max_acceleration(owned.as_deref());
         self.last_acceleration = self.global_max(local);
-        if let (Some(b), Some(now)) = (budget, context!(self, state.time).powers()) {
+        let now = context!(self, state.time).powers(&state.particles);
+        if let (Some(b), Some(now)) = (budget, now) {
             b.restart_from(now);
         }
     }
@@ -256,7 +257,7 @@ impl<const D: usize> Stepper<D> {
         let local = (self.integrator.begin(&mut state.particles, &mut cx)).max_acceleration(owned);
         let local = local.max(wall_acceleration(&state.particles));
         let a_max = cx.halo.map_or(local, |r| r.max(local));
-        if let (Some(b), Some(now)) = (budget.as_deref_mut(), cx.powers()) {
+        if let (Some(b), Some(now)) = (budget.as_deref_mut(), cx.powers(&state.particles)) {
             b.advance(now);
         }
         let bodies_dt = cx.motions.as_ref().map_or(f64::INFINITY, |m| m.max_dt());

@@ -89,10 +89,12 @@ impl<const D: usize> Context<'_, D> {
     }
 
     /// The energy budget's powers at the last evaluation (`None` when the scheme keeps
-    /// no budget), the free bodies' included.
-    pub fn powers(&self) -> Option<Powers> {
+    /// no budget), the free bodies' included, and the forcing's at the state `p` of
+    /// that evaluation (the step's start).
+    pub fn powers(&self, p: &Particles<D>) -> Option<Powers> {
         let mut now = self.model.last_powers()?;
         now.bodies = self.motions.as_deref().map_or(0.0, Motions::free_power);
+        now.forcing = self.forcing.map_or(0.0, |f| f.power(p, self.time));
         Some(now)
     }
 

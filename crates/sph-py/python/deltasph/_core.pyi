@@ -129,10 +129,12 @@ class Simulation:
         """Fluid particles inside a wall now (zero in a sound run)."""
     def energies(self) -> dict[str, Optional[float]]:
         """``kinetic``, ``potential``, ``internal``, ``total`` (the fluid's), ``bodies``
-        (the free bodies'), ``dissipated`` and ``moving_work`` [J]:
-        ``total + bodies + dissipated`` stays constant.
+        (the free bodies'), ``dissipated``, ``moving_work`` and ``forcing_work`` (the
+        body force's and the absorbers') [J]: ``total + bodies + dissipated`` stays
+        constant.
 
-        ``dissipated`` and ``moving_work`` are None unless ``diagnostics.energy_budget = true``.
+        ``dissipated``, ``moving_work`` and ``forcing_work`` are None unless
+        ``diagnostics.energy_budget = true``.
         """
     def probe_pressure(self, points: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Shepard-interpolated pressure [Pa] at points (M, D) or one point (D,); NaN at

@@ -8,7 +8,7 @@ use crate::error::{Result, SphError};
 
 impl Case {
     /// Each absorber's zone has a length and its rate is positive (gravity gives the
-    /// default); the energy budget does not count their power yet.
+    /// default).
     pub(super) fn validate_absorbers(&self) -> Result<()> {
         for (k, a) in self.absorber.iter().enumerate() {
             finite(&format!("absorber[{k}].from"), a.from)?;
@@ -21,13 +21,6 @@ impl Case {
                 ));
             }
             positive(&format!("absorber[{k}].rate"), self.absorber_rate(a))?;
-            if self.diagnostics.energy_budget {
-                return Err(SphError::invalid(
-                    "diagnostics.energy_budget",
-                    "true",
-                    "false beside an absorber (its dissipated power is not in the budget)",
-                ));
-            }
         }
         Ok(())
     }

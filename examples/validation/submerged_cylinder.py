@@ -42,15 +42,6 @@ RADIUS, SUBMERGENCE = 0.1, 0.25
 OMEGA = 2 * math.pi / PERIOD
 
 
-def wavenumber(omega, depth):
-    """Root of ω² = g k tanh(kd) (Newton)."""
-    k = omega * omega / G
-    for _ in range(50):
-        k -= (G * k * math.tanh(k * depth) - omega**2) / (
-            G * math.tanh(k * depth) + G * k * depth / math.cosh(k * depth) ** 2)
-    return k
-
-
 def config(dx, cylinder, changes=()):
     """The case at spacing `dx`, with or without the cylinder, with `changes`
     ("section.key=value", the value in TOML) applied."""
@@ -178,7 +169,7 @@ def main():
                         help="analyse the runs already in --scratch instead of running them")
     args = parser.parse_args()
     theory = solve(RADIUS, SUBMERGENCE, OMEGA)
-    k = wavenumber(OMEGA, DEPTH)
+    k = ds.regular_wave(height=HEIGHT, period=PERIOD, depth=DEPTH, gravity=G)["wavenumber"]
     with open(HERE / "submerged_cylinder.toml", "rb") as f:
         gauges = {g["name"]: g["position"][0] for g in tomllib.load(f)["diagnostics"]["gauges"]}
     print(f"theory: |R| = {abs(theory['R']):.1e}, T = {abs(theory['T']):.4f} at "

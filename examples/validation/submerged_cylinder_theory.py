@@ -61,21 +61,29 @@ def _pv_integral(g, pole, upper):
     return head + tail
 
 
+def wave_integral(power, K, depth, trig, x, order):
+    """∫ k^power (k+K)/(k−K) e^{−k depth} trig(kx) dk, PV + iπ residue (outgoing waves),
+    for the multipole of `order` (the quadrature's range grows with it)."""
+    upper = K + (order + 40) / depth
+    g = lambda k: k ** power * (k + K) * np.exp(-k * depth) * trig(k * x)
+    residue = K ** power * 2 * K * math.exp(-K * depth) * trig(K * x)
+    return pv_integral(g, K, upper) + 1j * math.pi * residue
+
+
+def minus_sin(u):
+    return -np.sin(u)
+
+
+def regular_value(n, K, f, x, y):
+    """The cos and sin integrals of order n at (x, y):
+    C = ∫ k^{n-1}(k+K)/(k−K) e^{k(y−f)} cos kx dk, S the same with sin kx."""
+    return [wave_integral(n - 1, K, f - y, trig, x, n) for trig in (np.cos, np.sin)]
+
+
 def regular_gradient(n, K, f, x, y):
-    """∂/∂x and ∂/∂y of the cos and sin integrals of order n at (x, y):
-    C = ∫ k^{n-1}(k+K)/(k−K) e^{k(y−f)} cos kx dk, S the same with sin kx,
-    each PV + iπ residue. Returns (Cx, Cy, Sx, Sy), complex."""
+    """∂/∂x and ∂/∂y of C and S of `regular_value`: (Cx, Cy, Sx, Sy), complex."""
     depth = f - y  # > f > 0 below the surface
-    upper = K + (n + 40) / depth
-    out = []
-    for trig, dtrig in ((np.cos, lambda u: -np.sin(u)), (np.sin, np.cos)):
-        gx = lambda k: k ** n * (k + K) * np.exp(-k * depth) * dtrig(k * x)
-        gy = lambda k: k ** n * (k + K) * np.exp(-k * depth) * trig(k * x)
-        res_x = K ** n * 2 * K * math.exp(-K * depth) * dtrig(K * x)
-        res_y = K ** n * 2 * K * math.exp(-K * depth) * trig(K * x)
-        out.append(pv_integral(gx, K, upper) + 1j * math.pi * res_x)
-        out.append(pv_integral(gy, K, upper) + 1j * math.pi * res_y)
-    return out
+    return [wave_integral(n, K, depth, trig, x, n) for trig in (minus_sin, np.cos, np.cos, np.sin)]
 
 
 def solve(a, f, omega, n_max=10):
@@ -151,18 +159,6 @@ def solve(a, f, omega, n_max=10):
         "Fy": fy * per_amplitude,
         "residual": residual,
     }
-
-
-def regular_value(n, K, f, x, y):
-    """The cos and sin integrals of order n at (x, y) (PV + iπ residue)."""
-    depth = f - y
-    upper = K + (n + 40) / depth
-    out = []
-    for trig in (np.cos, np.sin):
-        g = lambda k: k ** (n - 1) * (k + K) * np.exp(-k * depth) * trig(k * x)
-        res = K ** (n - 1) * 2 * K * math.exp(-K * depth) * trig(K * x)
-        out.append(pv_integral(g, K, upper) + 1j * math.pi * res)
-    return out
 
 
 def small_cylinder_force(a, f, omega):

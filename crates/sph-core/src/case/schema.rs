@@ -117,7 +117,8 @@ fn default_sound_speed_factor() -> f64 {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FluidBlockConfig {
-    /// Lower corner \[m\]. The block shares the tanks' lattice when it is a multiple of Δx.
+    /// Lower corner \[m\]. The block shares the tanks' lattice when it is a multiple of Δx; a run
+    /// gives a notice when its fluid starts closer than 0.9 Δx to a wall (off the walls' lattice).
     pub lo: Vec<f64>,
     /// Upper corner \[m\].
     pub hi: Vec<f64>,

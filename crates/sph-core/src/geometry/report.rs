@@ -1,5 +1,6 @@
 //! What a case builds, in the words of `sph-cli check`: each region's particle count
-//! and bounding box, and the closest approach of fluid to a wall.
+//! and bounding box, and the closest approach of fluid to a wall (with a notice when
+//! it is off the walls' lattice).
 
 use super::checks::CellIndex;
 use super::Setup;
@@ -55,6 +56,36 @@ impl<const D: usize> Setup<D> {
 
     /// The closest fluid-wall pair within one kernel support.
     fn closest_wall(&self, dx: f64, support: f64) -> String {
+        match self.closest_fluid_to_wall(support) {
+            None => format!("no fluid within a kernel support ({support:.4} m) of a wall"),
+            Some((r, i, j)) => format!(
+                "closest fluid to a wall: {r:.4} m ({:.2} Δx), {}",
+                r / dx,
+                self.pair(i, j)
+            ),
+        }
+    }
+
+    /// A notice when some fluid starts closer than 0.9 Δx to a wall particle: on one
+    /// lattice the closest is Δx, so the fluid is off the walls' lattice (a fluid
+    /// block whose `lo` is not a multiple of Δx beside a shape, or a tank on another
+    /// offset), which biases the wall's pressure and load (by 5% on a floating
+    /// section's buoyancy at half a spacing, docs/validation/floating_bodies.md §4).
+    pub fn off_lattice_notice(&self, dx: f64, support: f64) -> Option<String> {
+        let (r, i, j) = self.closest_fluid_to_wall(support)?;
+        (r < 0.9 * dx).then(|| {
+            format!(
+                "fluid starts {:.2} Δx from a wall ({}): off the walls' lattice, which biases \
+                 the pressure and load there; put the fluid block's lo on a multiple of Δx",
+                r / dx,
+                self.pair(i, j)
+            )
+        })
+    }
+
+    /// The smallest distance from a fluid particle to a wall particle, if within
+    /// `support`, and the pair.
+    fn closest_fluid_to_wall(&self, support: f64) -> Option<(f64, usize, usize)> {
         let p = &self.particles;
         let walls = CellIndex::new(p, support, |i| p.kind[i] == Kind::Wall);
         let mut best: Option<(f64, usize, usize)> = None;
@@ -66,17 +97,19 @@ impl<const D: usize> Setup<D> {
                 }
             }
         }
-        match best.filter(|(r, _, _)| *r <= support) {
-            None => format!("no fluid within a kernel support ({support:.4} m) of a wall"),
-            Some((r, i, j)) => format!(
-                "closest fluid to a wall: {r:.4} m ({:.2} Δx), {} at {:?} to {} at {:?}",
-                r / dx,
-                self.region_of(i),
-                rounded(&p.x[i]),
-                self.region_of(j),
-                rounded(&p.x[j])
-            ),
-        }
+        best.filter(|(r, _, _)| *r <= support)
+    }
+
+    /// "`region` at `x` to `region` at `x`" of a fluid and a wall particle.
+    fn pair(&self, i: usize, j: usize) -> String {
+        let x = &self.particles.x;
+        format!(
+            "{} at {:?} to {} at {:?}",
+            self.region_of(i),
+            rounded(&x[i]),
+            self.region_of(j),
+            rounded(&x[j])
+        )
     }
 
     fn region_of(&self, i: usize) -> &str {

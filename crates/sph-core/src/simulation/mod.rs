@@ -104,7 +104,8 @@ impl<const D: usize> Simulation<D> {
             setup.particles.keep_wall_acceleration(true);
             motions.place(&mut setup.particles, 0.0, &setup.domain);
         }
-        let stepper = Stepper::new(&case, model, control, setup.domain, open, forcing, motions);
+        let mut stepper = Stepper::new(&case, model, control, setup.domain, open, forcing, motions);
+        (stepper.notices).extend(setup.off_lattice_notice(case.dx(), case.support()));
         Ok(Self {
             budget: case.diagnostics.energy_budget.then(EnergyBudget::default),
             observers: observers(&case, &setup.bodies),
@@ -332,8 +333,9 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Messages for the user, in the order they arose (this process's, in a split
-    /// run): today the first removal of fluid by a default domain (one that no
-    /// `[domain]` table set), with the count, the mass and where.
+    /// run): fluid that starts off the walls' lattice (closer than 0.9 Δx to a wall),
+    /// and the first removal of fluid by a default domain (one that no `[domain]`
+    /// table set), with the count, the mass and where.
     pub fn notices(&self) -> &[String] {
         &self.stepper.notices
     }

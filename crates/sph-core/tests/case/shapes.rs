@@ -313,3 +313,28 @@ fn bad_polygons_and_misplaced_keys_are_refused_in_one_line() {
         assert!(e.contains(expected), "{e}\n expected: {expected}");
     }
 }
+
+/// Fluid off the walls' lattice gets a notice naming the distance and the pair: a
+/// fluid block across a wall shape, its `lo` (−0.475) not a multiple of Δx, keeps fluid
+/// on the shape's faces, half a spacing from the shape's particles on the lattice of
+/// the origin; with `lo` on a multiple (−0.5) the closest fluid is a spacing away and
+/// there is no notice.
+#[test]
+fn fluid_off_the_walls_lattice_gets_a_notice() {
+    let case = |lo: f64| {
+        format!(
+            "{HEAD_2D}[[fluid_block]]\nlo = [{lo}, 0.0]\nhi = [0.5, 0.5]\n\
+             [[shape]]\nrole = \"wall\"\nbox = {{ lo = [-0.3, -0.3], hi = [0.0, 0.6] }}\n"
+        )
+    };
+    let off = build::<2>(&case(-0.475));
+    assert_eq!(off.notices().len(), 1, "{:?}", off.notices());
+    let notice = &off.notices()[0];
+    assert!(
+        notice.contains("0.50 Δx")
+            && notice.contains("fluid_block[0]")
+            && notice.contains("shape[0]"),
+        "{notice}"
+    );
+    assert!(build::<2>(&case(-0.5)).notices().is_empty());
+}

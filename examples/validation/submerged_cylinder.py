@@ -26,13 +26,14 @@ import argparse
 import cmath
 import math
 import pathlib
-import time
 import tomllib
 
 import numpy as np
 
 import deltasph as ds
+import variants
 from records import write_csv, write_table
+from variants import load_case
 from submerged_cylinder_theory import solve
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -45,15 +46,7 @@ OMEGA = 2 * math.pi / PERIOD
 def config(dx, cylinder, changes=()):
     """The case at spacing `dx`, with or without the cylinder, with `changes`
     ("section.key=value", the value in TOML) applied."""
-    with open(HERE / "submerged_cylinder.toml", "rb") as f:
-        cfg = tomllib.load(f)
-    for change in changes:
-        path, value = change.split("=", 1)
-        *tables, key = path.strip().split(".")
-        node = cfg
-        for t in tables:
-            node = node[int(t)] if isinstance(node, list) else node.setdefault(t, {})
-        node[key] = tomllib.loads(f"v = {value.strip()}")["v"]
+    cfg = load_case(HERE / "submerged_cylinder.toml", changes)
     cfg["particles"]["spacing"] = dx
     # the paddle at least the kernel support thick
     cfg["wall"][0]["lo"][0] = -max(0.1, 6 * dx)
@@ -64,18 +57,8 @@ def config(dx, cylinder, changes=()):
 
 
 def run(dx, cylinder, folder, reuse, changes=()):
-    """Runs the case into `folder` (with `reuse`, reads the series an earlier run left
-    there, its wall time from the folder's file times); returns the series as a dict of
-    columns, the wall time and the number of particles."""
-    if not reuse:
-        sim = ds.Simulation(config(dx, cylinder, changes))
-        start = time.perf_counter()
-        sim.run(out=folder, force=True)
-        wall = time.perf_counter() - start
-    else:
-        wall = (folder / "timeseries.csv").stat().st_mtime - (folder / "case.toml").stat().st_mtime
-    done = ds.load(folder)
-    return done.series, wall, len(done.snapshot(0)["id"])
+    """Runs the case into `folder` or reads it back (variants.run)."""
+    return variants.run(config(dx, cylinder, changes), folder, reuse)
 
 
 def harmonics(t, y):

@@ -111,7 +111,8 @@ def section_area(points):
 
 class Panels:
     """Straight panels between consecutive contour points, walked clockwise round the
-    body: the normal into the fluid is the tangent turned clockwise."""
+    body: the fluid is on the left of the walk, so the normal into it is the tangent
+    turned a quarter counter-clockwise, (−t_y, t_x)."""
 
     def __init__(self, points):
         self.start, self.end = points[:-1], points[1:]
@@ -223,8 +224,10 @@ def radiation(panels, centre, omega):
 
 
 def hydrostatics(points):
-    """Displaced area, centre of buoyancy's height above the keel, and the restoring
-    matrix [3, 3] of sway (springs), heave and roll about the centre of mass."""
+    """Displaced area, the centre of buoyancy's height above the keel (KB), the
+    metacentric height GM = KB + BM − KG with BM = B³/(12 area), and the restoring
+    matrix [3, 3] of sway (the springs), heave (ρgB) and roll about the centre of mass
+    (ρg area GM)."""
     area = section_area(points)
     x, y = points[:, 0], points[:, 1]
     # centroid of the closed polygon (contour plus the still level back to the start)

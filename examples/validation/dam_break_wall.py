@@ -26,7 +26,6 @@ import re
 import subprocess
 import tempfile
 import time
-import tomllib
 
 import numpy as np
 

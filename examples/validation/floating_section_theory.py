@@ -2,7 +2,7 @@
 the free-surface Green function) and the free decay it predicts (Cummins' equation).
 
     python3 examples/validation/floating_section_theory.py [--write-coefficients CSV]
-        [--write-decay CSV] [--panels N]
+        [--write-decay CSV] [--write-responses CSV] [--panels N]
 
 The section is the NTNU ship section of Sundsdal, Greco, Hanssen & Lugni (2025): beam
 B = 0.40 m, draft d = 0.20 m, a rectangle with its bilges rounded to r = 0.0512 m, the
@@ -47,6 +47,12 @@ tests: released at rest 0.04 m above the draft, and upright at the draft with an
 angular velocity of 0.5 rad/s given to the body in water at rest (a kick: its momentum
 is shared at once with the added mass, and the roll reaches about 0.08 rad; a kick
 leaves the section upright, on the particle lattice it was built on).
+
+Responses in regular waves (the experiment's wave tests): the wave force on the section
+held still, from the diffraction problem on the same panels (checked against Haskind's
+relation from the radiation potentials), and the motions of
+[−ω²(M + A) + iω(B + B_rig) + C] ξ = F, with the rig's damping B_rig the experiment
+measured in sway (8.70 N s/m over the model's 0.586 m), taken the same in heave.
 """
 import argparse
 import math
@@ -63,6 +69,9 @@ BILGE = 0.0512
 KG = 0.106
 ROLL_GYRATION = 0.36 * BEAM
 SWAY_SPRING = 59.5 / 0.586          # N/m per metre of section
+# the rig's damping in the wave tests, 8.70 N s/m measured in sway and taken the same in
+# heave, per metre of section
+RIG_DAMPING = np.diag([8.70 / 0.586, 8.70 / 0.586, 0.0])
 IRREGULAR_CUTOFF = 8.5              # rad/s, below the first irregular frequency
 FREQUENCY_STEP = 0.05               # rad/s
 HEAVE_RELEASE = 0.04                # m, 20% of the draft
@@ -223,6 +232,46 @@ def radiation(panels, centre, omega):
     return added_mass, damping, amplitudes
 
 
+def incident(points, nu, omega):
+    """The incident wave of unit amplitude running toward +x, φ_I = (ig/ω) e^{νy − iνx}
+    (elevation e^{i(ωt − νx)}), and its gradient at `points` [n, 2]."""
+    phi = 1j * G / omega * np.exp(nu * points[:, 1] - 1j * nu * points[:, 0])
+    return phi, -1j * nu * phi, nu * phi
+
+
+def excitation(panels, centre, omega):
+    """The wave force [3] per metre on the section held still in the incident wave of
+    unit amplitude, F_k = iωρ ∫ (φ_I + φ_D) n_k ds with ∂φ_D/∂n = −∂φ_I/∂n (the
+    diffraction problem on the radiation's panels), and the same force by the Haskind
+    relation from the radiation potentials alone, F_k = iωρ ∫ (φ_I n_k − φ_k ∂φ_I/∂n) ds
+    (φ_k per unit velocity, ∂φ_k/∂n = n_k)."""
+    nu = omega**2 / G
+    potential, flux = influence(panels, nu)
+    modes = panels.modes(centre)
+    phi_i, gx, gy = incident(panels.mid, nu, omega)
+    normal_i = gx * panels.normal[:, 0] + gy * panels.normal[:, 1]
+    phi_d = potential @ np.linalg.solve(flux, -normal_i)
+    weighted = modes * panels.length[:, None]
+    diffraction = 1j * omega * RHO * weighted.T @ (phi_i + phi_d)
+    phi_k = potential @ np.linalg.solve(flux, modes.astype(complex))
+    haskind = 1j * omega * RHO * (weighted.T @ phi_i - (phi_k * panels.length[:, None]).T @ normal_i)
+    return diffraction, haskind
+
+
+def responses(panels, centre, mass, restoring, rig_damping, omegas):
+    """Complex motion amplitudes [ω, 3] per unit incident amplitude,
+    [−ω²(M + A) + iω(B + B_rig) + C] ξ = F, and the Haskind check's largest relative
+    difference in the force."""
+    motions, worst = [], 0.0
+    for omega in omegas:
+        added, damping, _ = radiation(panels, centre, omega)
+        force, haskind = excitation(panels, centre, omega)
+        worst = max(worst, np.max(np.abs(force - haskind)) / np.max(np.abs(force)))
+        system = -omega**2 * (mass + added) + 1j * omega * (damping + rig_damping) + restoring
+        motions.append(np.linalg.solve(system, force))
+    return np.array(motions), worst
+
+
 def hydrostatics(points):
     """Displaced area, the centre of buoyancy's height above the keel (KB), the
     metacentric height GM = KB + BM − KG with BM = B³/(12 area), and the restoring
@@ -346,6 +395,7 @@ def main():
     parser.add_argument("--panels", type=int, default=120)
     parser.add_argument("--write-coefficients", type=Path)
     parser.add_argument("--write-decay", type=Path)
+    parser.add_argument("--write-responses", type=Path)
     args = parser.parse_args()
     points = section_contour(args.panels)
     panels = Panels(points)
@@ -369,6 +419,18 @@ def main():
                 for i, w in enumerate(omegas)]
         write_csv(args.write_coefficients, source + ["added mass A_jk and damping B_jk per metre, "
                   "1 sway, 2 heave, 3 roll about the centre of mass"], header, np.array(rows))
+    if args.write_responses:
+        # up to the irregular-frequency cutoff, from a period of 1.6 s
+        response_omegas = np.arange(3.9, IRREGULAR_CUTOFF + 1e-9, 0.05)
+        motions, worst = responses(panels, centre, mass_matrix(area), restoring, RIG_DAMPING,
+                                   response_omegas)
+        print(f"wave force by diffraction against Haskind's relation: {worst:.2e} of the largest")
+        table = np.column_stack([response_omegas, np.abs(motions), np.angle(motions)])
+        write_csv(args.write_responses, source + [
+            "motions in regular beam-sea waves of unit amplitude running toward +x (elevation",
+            "cos(ωt − νx), ν = ω²/g), the experiment's sway springs and rig damping (8.70 N s/m",
+            "in sway and heave over 0.586 m): amplitude [m/m, m/m, rad/m] and phase [rad]"],
+            "omega,sway,heave,roll,sway_phase,heave_phase,roll_phase", table)
     if args.write_decay:
         # every 0.01 s, the time series' interval of the case
         table = np.column_stack([times, decay["heave"], decay["roll"]])[::5]

@@ -2,10 +2,11 @@
 import csv
 
 
-def write_csv(path, columns, results):
+def write_csv(path, columns, results, comments=()):
     """One row a result (a dict), its `columns` in order (empty where a result has none);
-    floats to 5 significant digits."""
+    floats to 5 significant digits; after `comments`, lines that open with "# "."""
     with open(path, "w", newline="") as f:
+        f.writelines(f"# {line}\n" for line in comments)
         w = csv.writer(f)
         w.writerow(columns)
         for r in results:

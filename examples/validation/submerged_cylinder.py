@@ -32,6 +32,7 @@ import numpy as np
 
 import deltasph as ds
 import variants
+import wave_analysis
 from records import write_csv, write_table
 from variants import load_case
 from submerged_cylinder_theory import solve
@@ -63,11 +64,7 @@ def run(dx, cylinder, folder, reuse, changes=()):
 
 def harmonics(t, y):
     """Complex amplitudes A_m of y ≈ a0 + Re Σ_{m≤3} A_m e^{-imωt}."""
-    cols = [np.ones_like(t)]
-    for m in (1, 2, 3):
-        cols += [np.cos(m * OMEGA * t), np.sin(m * OMEGA * t)]
-    coef, *_ = np.linalg.lstsq(np.array(cols).T, y, rcond=None)
-    return [complex(coef[2 * m - 1], coef[2 * m]) for m in (1, 2, 3)]
+    return wave_analysis.harmonics(t, y, OMEGA)
 
 
 def window(series):
@@ -82,10 +79,8 @@ def first(series, name):
 
 def split(series, names, positions, k):
     """Incident and reflected first-harmonic amplitudes at x = 0 (least squares)."""
-    a = np.array([first(series, f"{n}_elevation") for n in names])
-    m = np.array([[cmath.exp(1j * k * x), cmath.exp(-1j * k * x)] for x in positions])
-    (incident, reflected), *_ = np.linalg.lstsq(m, a, rcond=None)
-    return incident, reflected
+    a = [first(series, f"{n}_elevation") for n in names]
+    return wave_analysis.split(a, positions, k)
 
 
 def analyse(with_cyl, without, gauges, k):

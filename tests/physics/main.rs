@@ -6,6 +6,7 @@ mod conservation;
 mod dam_break;
 mod dam_break_3d;
 mod floating_bodies;
+mod floating_in_waves;
 mod free_surface;
 mod hydrostatic;
 mod impinging_jet;

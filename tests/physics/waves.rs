@@ -38,7 +38,7 @@ fn gauge_series(case: Case, start: f64) -> Series {
 /// Runs `case` to its end and keeps, at every step's end from `start` on, the time
 /// and the series columns whose names `keep` accepts (names and columns in the
 /// series' order).
-fn series_columns(
+pub(crate) fn series_columns(
     case: Case,
     start: f64,
     keep: &dyn Fn(&str) -> bool,
@@ -64,7 +64,7 @@ fn series_columns(
 
 /// Least squares `y ≈ a0 + Σ_m Re(A_m e^{-imωt})`, m = 1..3: the complex amplitudes
 /// `A_m = a_m + i b_m` of `a_m cos mωt + b_m sin mωt`.
-fn harmonics(t: &[f64], y: &[f64], omega: f64) -> [Complex<f64>; 3] {
+pub(crate) fn harmonics(t: &[f64], y: &[f64], omega: f64) -> [Complex<f64>; 3] {
     let basis = |t: f64, c: usize| match c {
         0 => 1.0,
         _ => {
@@ -85,7 +85,7 @@ fn harmonics(t: &[f64], y: &[f64], omega: f64) -> [Complex<f64>; 3] {
 }
 
 /// The least-squares weights `(P, Q)` of `A_g ≈ P u_g + Q v_g` over the gauges.
-fn split(
+pub(crate) fn split(
     a: &[Complex<f64>],
     u: &[Complex<f64>],
     v: &[Complex<f64>],
@@ -97,7 +97,7 @@ fn split(
 }
 
 /// `e^{ikx}` at each of `xs`.
-fn wave(k: f64, xs: &[f64]) -> Vec<Complex<f64>> {
+pub(crate) fn wave(k: f64, xs: &[f64]) -> Vec<Complex<f64>> {
     xs.iter().map(|x| Complex::new(0.0, k * x).exp()).collect()
 }
 

@@ -211,14 +211,18 @@ def influence(panels, nu):
     return potential, flux
 
 
-def radiation(panels, centre, omega):
+def radiation(panels, centre, omega, solved=None):
     """Added mass and damping [3, 3] per metre at ω (ω = inf: A(∞), B = 0), and the
-    radiated wave amplitudes toward +x and −x per unit motion [2, 3]."""
+    radiated wave amplitudes toward +x and −x per unit motion [2, 3]. With `solved` a
+    dict, the influence matrices and the potentials are left in it (`potential`,
+    `flux`, `phi`) for the diffraction problem at the same ω."""
     nu = None if math.isinf(omega) else omega**2 / G
     potential, flux = influence(panels, nu)
     modes = panels.modes(centre)
     sigma = np.linalg.solve(flux, modes.astype(complex))
     phi = potential @ sigma
+    if solved is not None:
+        solved.update(potential=potential, flux=flux, phi=phi)
     pressure_integral = (modes * panels.length[:, None]).T @ phi      # ∫ φ_j n_k ds
     added_mass = -RHO * pressure_integral.real
     damping = np.zeros((3, 3)) if nu is None else RHO * omega * pressure_integral.imag
@@ -239,21 +243,19 @@ def incident(points, nu, omega):
     return phi, -1j * nu * phi, nu * phi
 
 
-def excitation(panels, centre, omega):
+def excitation(panels, centre, omega, potential, flux, phi_k):
     """The wave force [3] per metre on the section held still in the incident wave of
     unit amplitude, F_k = iωρ ∫ (φ_I + φ_D) n_k ds with ∂φ_D/∂n = −∂φ_I/∂n (the
-    diffraction problem on the radiation's panels), and the same force by the Haskind
-    relation from the radiation potentials alone, F_k = iωρ ∫ (φ_I n_k − φ_k ∂φ_I/∂n) ds
-    (φ_k per unit velocity, ∂φ_k/∂n = n_k)."""
+    diffraction problem on the radiation's panels: its `potential` and `flux`
+    influence matrices), and the same force by the Haskind relation from the radiation
+    potentials `phi_k` alone (per unit velocity, ∂φ_k/∂n = n_k),
+    F_k = iωρ ∫ (φ_I n_k − φ_k ∂φ_I/∂n) ds."""
     nu = omega**2 / G
-    potential, flux = influence(panels, nu)
-    modes = panels.modes(centre)
     phi_i, gx, gy = incident(panels.mid, nu, omega)
     normal_i = gx * panels.normal[:, 0] + gy * panels.normal[:, 1]
     phi_d = potential @ np.linalg.solve(flux, -normal_i)
-    weighted = modes * panels.length[:, None]
+    weighted = panels.modes(centre) * panels.length[:, None]
     diffraction = 1j * omega * RHO * weighted.T @ (phi_i + phi_d)
-    phi_k = potential @ np.linalg.solve(flux, modes.astype(complex))
     haskind = 1j * omega * RHO * (weighted.T @ phi_i - (phi_k * panels.length[:, None]).T @ normal_i)
     return diffraction, haskind
 
@@ -264,8 +266,10 @@ def responses(panels, centre, mass, restoring, rig_damping, omegas):
     difference in the force."""
     motions, worst = [], 0.0
     for omega in omegas:
-        added, damping, _ = radiation(panels, centre, omega)
-        force, haskind = excitation(panels, centre, omega)
+        solved = {}
+        added, damping, _ = radiation(panels, centre, omega, solved)
+        force, haskind = excitation(panels, centre, omega, solved["potential"], solved["flux"],
+                                    solved["phi"])
         worst = max(worst, np.max(np.abs(force - haskind)) / np.max(np.abs(force)))
         system = -omega**2 * (mass + added) + 1j * omega * (damping + rig_damping) + restoring
         motions.append(np.linalg.solve(system, force))

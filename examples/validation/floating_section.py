@@ -25,7 +25,6 @@ Usage: python3 examples/validation/floating_section.py [--quick] [--scratch DIR]
 25 min; --quick the coarsest only). Writes docs/validation/floating_section{.csv,
 _table.md,_decay.png}.
 """
-import argparse
 import pathlib
 
 import numpy as np
@@ -136,15 +135,8 @@ def plot(path, curves, predicted):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="the coarsest resolution only")
-    parser.add_argument("--scratch", type=pathlib.Path, default=pathlib.Path("floating_section_runs"),
-                        help="where the runs' folders go (default ./floating_section_runs)")
-    parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
-                        help="change the case (repeatable): prints the analysis and writes no record")
-    parser.add_argument("--reuse", action="store_true",
-                        help="analyse the runs already in --scratch instead of running them")
-    args = parser.parse_args()
+    args = variants.study_arguments(__doc__.splitlines()[0], "floating_section",
+                                    "the coarsest resolution only")
     predicted = reference()
     results, curves = [], {"heave": {}, "roll": {}}
     for dx in (0.04,) if args.quick else (0.04, 0.02, 0.04 / 3):

@@ -19,7 +19,6 @@ Usage: python3 examples/validation/floating_section_waves.py [--quick] [--scratc
 draft/Δx = 5 and the three longest waves, about 4 min). Writes docs/validation/floating_section_waves{.csv,
 _table.md,.png}.
 """
-import argparse
 import math
 import pathlib
 
@@ -136,12 +135,8 @@ def plot(path, results, dx):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="draft/Δx = 5, the three longest waves")
-    parser.add_argument("--scratch", type=pathlib.Path, default=pathlib.Path("floating_section_waves_runs"))
-    parser.add_argument("--reuse", action="store_true", help="read the runs back from --scratch")
-    parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE")
-    args = parser.parse_args()
+    args = variants.study_arguments(__doc__.splitlines()[0], "floating_section_waves",
+                                    "draft/Δx = 5, the three longest waves")
     dx = 0.04 if args.quick else 0.02
     results = []
     # at draft/Δx = 5 the paddle's absorption gauge is too far out for the short waves
@@ -159,6 +154,8 @@ def main():
               + ", ".join(f"{n} {r[n]:.3f} (experiment {r[n + '_experiment']:.3f}, "
                           f"theory {r[n + '_theory']:.3f})" for n in MOTIONS)
               + f", {wall:.0f} s")
+    if args.set:
+        return
     columns = list(results[0])
     suffix = "_quick" if args.quick else ""
     write_csv(OUT / f"floating_section_waves{suffix}.csv", columns, results)

@@ -22,7 +22,6 @@ Usage: python3 examples/validation/submerged_cylinder.py [--quick]
 (2 threads: Δx = 0.025 m and 0.0125 m, about 25 min; --quick the coarse pair only)
 Writes docs/validation/submerged_cylinder{.csv,_table.md,_signals.png}.
 """
-import argparse
 import cmath
 import math
 import pathlib
@@ -136,16 +135,8 @@ def degrees(z):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="the coarse pair only")
-    parser.add_argument("--scratch", type=pathlib.Path, default=pathlib.Path("submerged_cylinder_runs"),
-                        help="where the runs' folders go (default ./submerged_cylinder_runs)")
-    parser.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
-                        help="change the case (repeatable; e.g. scheme.alpha=0): prints the "
-                             "analysis and writes no record")
-    parser.add_argument("--reuse", action="store_true",
-                        help="analyse the runs already in --scratch instead of running them")
-    args = parser.parse_args()
+    args = variants.study_arguments(__doc__.splitlines()[0], "submerged_cylinder",
+                                    "the coarse pair only")
     theory = solve(RADIUS, SUBMERGENCE, OMEGA)
     k = ds.regular_wave(height=HEIGHT, period=PERIOD, depth=DEPTH, gravity=G)["wavenumber"]
     with open(HERE / "submerged_cylinder.toml", "rb") as f:

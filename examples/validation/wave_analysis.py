@@ -4,17 +4,16 @@ import math
 
 import numpy as np
 
+import deltasph as ds
+
 G = 9.81
 
 
 def wavenumber(omega, depth):
-    """The root k of ω² = g k tanh(k d), by Newton's method from the deep-water k."""
-    k = omega**2 / G
-    for _ in range(50):
-        residual = G * k * math.tanh(k * depth) - omega**2
-        slope = G * math.tanh(k * depth) + G * k * depth / math.cosh(k * depth) ** 2
-        k -= residual / slope
-    return k
+    """The root k of ω² = g k tanh(k d), from deltasph's own wave theory."""
+    # the height only scales the other entries
+    wave = ds.regular_wave(height=1.0, period=2.0 * math.pi / omega, depth=depth, gravity=G)
+    return wave["wavenumber"]
 
 
 def group_velocity(omega, k, depth):

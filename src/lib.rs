@@ -81,3 +81,12 @@ pub fn slope(x: &[f64], y: &[f64]) -> f64 {
     let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
     sxy / sxx
 }
+
+/// The times at which `x(t)`, read as linear between samples, crosses `level`: every
+/// crossing, or (with `rising_only`) the up-crossings alone.
+pub fn crossings(t: &[f64], x: &[f64], level: f64, rising_only: bool) -> Vec<f64> {
+    (1..x.len())
+        .filter(|&i| (x[i - 1] < level) != (x[i] < level) && (!rising_only || x[i - 1] < level))
+        .map(|i| t[i - 1] + (t[i] - t[i - 1]) * (level - x[i - 1]) / (x[i] - x[i - 1]))
+        .collect()
+}

@@ -301,10 +301,7 @@ fn section_heave(end: f64) -> (Vec<f64>, Vec<f64>) {
 /// interpolation): one and a half periods, while the motion is large (later crossings
 /// shift with the fitted equilibrium).
 fn swing_and_a_half(t: &[f64], x: &[f64]) -> f64 {
-    let crossings: Vec<f64> = (1..x.len())
-        .filter(|&i| (x[i - 1] < 0.0) != (x[i] < 0.0))
-        .map(|i| t[i - 1] - x[i - 1] * (t[i] - t[i - 1]) / (x[i] - x[i - 1]))
-        .collect();
+    let crossings = deltasph_suite::crossings(t, x, 0.0, false);
     crossings[3] - crossings[0]
 }
 

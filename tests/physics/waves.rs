@@ -538,13 +538,7 @@ fn gauge_list(xs: &[f64]) -> String {
 /// mean (crossings placed by linear interpolation).
 fn up_crossing_period(t: &[f64], eta: &[f64]) -> f64 {
     let mean = eta.iter().sum::<f64>() / eta.len() as f64;
-    let ups: Vec<f64> = (1..eta.len())
-        .filter(|&i| eta[i - 1] < mean && eta[i] >= mean)
-        .map(|i| {
-            let (a, b) = (eta[i - 1] - mean, eta[i] - mean);
-            t[i - 1] + (t[i] - t[i - 1]) * (-a) / (b - a)
-        })
-        .collect();
+    let ups = deltasph_suite::crossings(t, eta, mean, true);
     assert!(ups.len() > 1, "{} zero-up-crossings", ups.len());
     (ups[ups.len() - 1] - ups[0]) / (ups.len() - 1) as f64
 }

@@ -2,6 +2,8 @@
 //! the only place where options are matched. Everything below runs without a
 //! per-pair branch on them.
 
+use std::any::Any;
+
 use crate::case::{
     Case, DiffusionChoice, ShiftingChoice, TurbulenceChoice, ViscosityChoice, WallCondition,
 };
@@ -24,7 +26,37 @@ fn finds_free_surface(case: &Case) -> bool {
 }
 
 /// Builds the model a case asks for, with physical constants already resolved.
+///
+/// The model types (every kernel × diffusion × viscosity, and δ-LES-SPH) are compiled
+/// once, here, for 2D and 3D, by the two non-generic builders below: a generic call
+/// would compile all of them again in every crate that starts a simulation (the solver,
+/// the Python module and each test binary). `D` is 2 or 3 (checked by the case); the
+/// casts through `Any` are resolved at compile time.
 pub fn build_model<const D: usize>(case: &Case, physics: Physics<D>) -> Box<dyn Model<D>> {
+    let physics: Box<dyn Any> = Box::new(physics);
+    let model: Box<dyn Any> = match physics.downcast::<Physics<2>>() {
+        Ok(physics) => Box::new(build_model_2d(case, *physics)),
+        Err(physics) => Box::new(build_model_3d(
+            case,
+            *physics.downcast().expect("simulations are 2D or 3D"),
+        )),
+    };
+    *model
+        .downcast::<Box<dyn Model<D>>>()
+        .expect("the model has the simulation's dimension")
+}
+
+/// [`build_model`] in 2D, compiled in this crate only.
+fn build_model_2d(case: &Case, physics: Physics<2>) -> Box<dyn Model<2>> {
+    build_model_of(case, physics)
+}
+
+/// [`build_model`] in 3D, compiled in this crate only.
+fn build_model_3d(case: &Case, physics: Physics<3>) -> Box<dyn Model<3>> {
+    build_model_of(case, physics)
+}
+
+fn build_model_of<const D: usize>(case: &Case, physics: Physics<D>) -> Box<dyn Model<D>> {
     let h = case.h();
     match case.particles.kernel {
         KernelChoice::WendlandC2 => with_kernel(case, physics, WendlandC2::new(h, D)),

@@ -201,29 +201,44 @@ fn v2_ode_matches_the_published_table() {
     }
 }
 
-/// V2 at L/Δx = 100, the windows of docs/theory.md §13: |E_A/ODE - 1| ≤ 3% at t = 0.5 and ≤ 4% at 0.9
-/// (measured -0.8% and -1.9%), E_A - E_B within [0.6, 1.6] × the ODE's 0.0104
-/// (measured 0.78 ×; l = h would give 3.7 ×, l = 2h 10 ×). About 2 minutes on 2 cores.
+/// V2 at L/Δx = 70, with the windows docs/theory.md §13 sets for L/Δx = 100: |E_A/ODE - 1|
+/// ≤ 3% at t = 0.5 and ≤ 4% at 0.9 (measured -0.9% and -3.7%), E_A - E_B within [0.6,
+/// 1.6] × the ODE's 0.0205 (measured 0.65 ×; at L/Δx = 100 the window rejects l = h, 3.1 ×).
+/// The example's L/Δx = 100 (-0.8%, -1.9%, 0.78 ×) and 200 are the ignored
+/// `v2_forced_cells_converge`; at L/Δx = 50 E_A(0.9) is 9.4% low (docs/validation/les.md).
+/// About 70 s on 2 cores.
 #[test]
 fn v2_forced_cells_follow_the_ode() {
-    let ([e05, e09], ratio) = v2(0.01);
+    let ([e05, e09], ratio) = v2(1.0 / 70.0);
     assert!(e05.abs() <= 0.03, "E_A(0.5) off the ODE by {e05}");
     assert!(e09.abs() <= 0.04, "E_A(0.9) off the ODE by {e09}");
     assert!((0.6..=1.6).contains(&ratio), "ΔE = {ratio} × the ODE's");
 }
 
-/// V2 at L/Δx = 200: |E_A/ODE - 1| ≤ 2% (docs/theory.md §13), and ΔE within [0.6, 1.6] × the ODE's
-/// 0.0027. About 20 minutes on 2 cores:
-/// `cargo test --release --test physics v2_forced_cells_converge -- --ignored --nocapture`.
+/// V2 at the example's L/Δx = 100 and at 200, the windows of docs/theory.md §13:
+/// |E_A/ODE - 1| ≤ 3% (t = 0.5) and 4% (0.9) at 100, ≤ 2% at 200, the error falling
+/// with Δx, and ΔE within [0.6, 1.6] × the ODE's (0.0104, 0.0027). About 20 minutes on 2
+/// cores: `cargo test --release --test physics v2_forced_cells_converge -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn v2_forced_cells_converge() {
+    let ([c05, c09], coarse_ratio) = v2(0.01);
+    assert!(
+        c05.abs() <= 0.03 && c09.abs() <= 0.04,
+        "L/Δx = 100: {c05}, {c09}"
+    );
     let ([e05, e09], ratio) = v2(0.005);
     assert!(
         e05.abs() <= 0.02 && e09.abs() <= 0.02,
         "errors {e05}, {e09}"
     );
-    assert!((0.6..=1.6).contains(&ratio), "ΔE = {ratio} × the ODE's");
+    assert!(
+        e09.abs() < c09.abs(),
+        "E_A(0.9): {c09} at 100, {e09} at 200"
+    );
+    for r in [coarse_ratio, ratio] {
+        assert!((0.6..=1.6).contains(&r), "ΔE = {r} × the ODE's");
+    }
 }
 
 /// V3, forced until t = 1, then decaying through 2D turbulence (the same case to t = 3):

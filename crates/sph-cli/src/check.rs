@@ -2,7 +2,7 @@
 //! built, the domain, the memory the run will take and what it will cost.
 
 use anyhow::Result;
-use sph_core::case::bytes_text;
+use sph_core::case::{bytes_text, ViscosityChoice};
 use sph_core::decomposition::Decomposition;
 use sph_core::simulation::LONG_RUN;
 use sph_core::{Case, Simulation};
@@ -116,6 +116,7 @@ fn cost_lines<const D: usize>(sim: &Simulation<D>) -> String {
         duration_text(cost.seconds),
         cost.cores
     );
+    text.push_str(&viscosity_line(sim.case(), cost.nu));
     if cost.seconds > LONG_RUN {
         text.push_str(&format!(
             "warning: this run would take more than a day ({}): check fluid.gravity, \
@@ -124,6 +125,21 @@ fn cost_lines<const D: usize>(sim: &Simulation<D>) -> String {
         ));
     }
     text
+}
+
+/// The viscous term's kinematic viscosity; for the artificial one, that it scales with
+/// c0 (docs/validation/impinging_jet.md: at fixed α a higher c0 slows the flow).
+fn viscosity_line(case: &Case, nu: f64) -> String {
+    match case.scheme.viscosity {
+        ViscosityChoice::None => String::new(),
+        ViscosityChoice::Physical => format!("viscosity: physical, ν = {nu:.3e} m²/s\n"),
+        ViscosityChoice::Artificial => format!(
+            "viscosity: artificial, α = {}: ν = α h c0/{} = {nu:.3e} m²/s, proportional to \
+             c0 (to raise c0 at the same ν, lower scheme.alpha in proportion)\n",
+            case.scheme.alpha(),
+            2 * (case.dimension + 2)
+        ),
+    }
 }
 
 /// Seconds as a short duration.

@@ -1,6 +1,6 @@
 //! What `sph-cli check` reports: every example valid, the split among processes, moving
-//! and free bodies, regions and the closest fluid to a wall, long runs and unreachable
-//! probes.
+//! and free bodies, regions and the closest fluid to a wall, the viscosity, long runs
+//! and unreachable probes.
 
 use crate::common::{cli, example, scratch, small_case};
 
@@ -250,4 +250,25 @@ fn check_reports_where_an_inlets_inner_face_lies() {
         line.contains("inlet  at y hi = 0.325: 0.025 m wide, inner face at y = 0.3, 100 particles"),
         "{line}"
     );
+}
+
+/// `check` names the viscous term's kinematic viscosity: the jet's artificial one is
+/// α h c0/8 = 0.02 · 0.01 m · 10 m/s / 8 (Δx = 0.005 m, h/Δx = 2), the oscillating
+/// cylinder's physical one μ/ρ0 = 0.01 m²/s.
+#[test]
+fn check_reports_the_viscosity_the_flow_gets() {
+    for (name, line) in [
+        (
+            "validation/impinging_jet.toml",
+            "viscosity: artificial, α = 0.02: ν = α h c0/8 = 2.500e-4 m²/s",
+        ),
+        (
+            "validation/oscillating_cylinder.toml",
+            "viscosity: physical, ν = 1.000e-2 m²/s",
+        ),
+    ] {
+        let out = cli(&["check", &example(name)]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(stdout.contains(line), "{name}: {stdout}");
+    }
 }

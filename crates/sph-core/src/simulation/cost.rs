@@ -19,6 +19,10 @@ pub const LONG_RUN: f64 = 86_400.0;
 pub struct Cost {
     /// Sound speed c0 [m/s].
     pub c0: f64,
+    /// The kinematic viscosity the viscous term acts with [m²/s]: μ/ρ0 of the physical
+    /// viscosity, `α h c0/(2(D + 2))` of the artificial one (`K = α h c0 ρ0` over the
+    /// physical term's `2(D + 2) ρ0`), 0 without a viscous term.
+    pub nu: f64,
     /// The first step \[s\]: the acoustic, viscous and gravity limits at the start.
     pub dt: f64,
     /// Steps from the start to the end time at that step.
@@ -55,6 +59,7 @@ impl<const D: usize> Simulation<D> {
         let seconds = steps * evaluations * self.n_fluid() as f64 * pairs / rate;
         Cost {
             c0: self.physics().eos.c0,
+            nu: control.nu,
             dt,
             steps,
             seconds,

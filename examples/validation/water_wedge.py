@@ -97,7 +97,13 @@ def rms_difference(a, b):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="H/Δx = 25-200 only")
+    parser.add_argument("--report", action="store_true",
+                        help="rewrite water_wedge.md from the record's CSV files, no runs")
     args = parser.parse_args()
+    if args.report:
+        rows, convergence, resolutions = read_record()
+        write_report(rows, convergence, resolutions)
+        return
     resolutions = [25, 50, 100, 200] if args.quick else [50, 100, 200, 400]
     q = 0.5 * RHO0 * U**2
     runs, rows = {}, []
@@ -134,21 +140,49 @@ def main():
     signals_plot(runs, resolutions)
 
 
+CONVERGENCE = OUT / "water_wedge_convergence.csv"
+
+
+def read_record():
+    """The rows, the successive RMS differences and the resolutions of the recorded
+    study (water_wedge.csv and water_wedge_convergence.csv)."""
+    with open(OUT / "water_wedge.csv", newline="") as f:
+        rows = [{k: v if k == "scheme" else float(v) for k, v in r.items()}
+                for r in csv.DictReader(f)]
+    for r in rows:
+        r["H/dx"], r["particles"], r["steps"] = int(r["H/dx"]), int(r["particles"]), int(r["steps"])
+    with open(CONVERGENCE, newline="") as f:
+        table = list(csv.DictReader(f))
+    resolutions = sorted({int(r["fine"]) for r in table} | {int(r["coarse"]) for r in table})
+    convergence = []
+    for label in SCHEMES:
+        diffs = [float(r["rms_difference"]) for r in table if r["scheme"] == label]
+        convergence.append((label, diffs, [math.log2(a / b) for a, b in zip(diffs, diffs[1:])]))
+    return rows, convergence, resolutions
+
+
 def write_report(rows, convergence, resolutions):
     OUT.mkdir(parents=True, exist_ok=True)
     with open(OUT / "water_wedge.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
+    with open(CONVERGENCE, "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(["scheme", "coarse", "fine", "rms_difference"])
+        for label, diffs, _ in convergence:
+            for (a, b), d in zip(zip(resolutions, resolutions[1:]), diffs):
+                writer.writerow([label, a, b, d])
     q = 0.5 * RHO0 * U**2
     lines = [
         "# Water-wedge impact: wall pressure at the apex",
         "",
-        "Command: `python3 examples/validation/water_wedge.py` (2 threads). Case: "
+        "Command: `python3 examples/validation/water_wedge.py` (2 threads; `--report` rewrites "
+        "this page from the CSV files). Case: "
         "`examples/validation/water_wedge.toml` (H = 0.5 m, flanks at 45°, U = 1 m/s, "
         "no gravity, RK4, Wendland C2 h/Δx = 2, α = 0.02).",
         "",
-        "| scheme | H/Δx | c0 [m/s] | particles | steps | wall [s] | first peak / ρ0c0U | "
+        "| scheme | H/Δx | c0 [m/s] | particles | steps | wall [s] | first-step peak / ρ0c0U | "
         "peak time [s] | mean p, t 0.02-0.06 s / ½ρ0U² | mean p, t 0.1-0.2 s / ½ρ0U² | "
         "noise / ½ρ0U² |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
@@ -165,7 +199,51 @@ def write_report(rows, convergence, resolutions):
                           in zip(zip(resolutions, resolutions[1:]), diffs))
         lines.append(f"- {label}: {pairs}; observed orders "
                      f"{', '.join(f'{o:.2f}' for o in orders)}")
+    lines += ["", "What converges:", ""] + [f"- {line}" for line in findings(rows, q)]
     (OUT / "water_wedge.md").write_text("\n".join(lines) + "\n")
+
+
+def findings(rows, q):
+    """What the table says: the late level's convergence per scheme and its change with
+    c0 from its numbers; the first-step peak and the self-similar phase as the full study
+    (H/Δx 50-400) found them."""
+    out = []
+    for label in SCHEMES:
+        runs = sorted((r for r in rows if r["scheme"] == label and r["c0"] == 20.0),
+                      key=lambda r: r["H/dx"])
+        levels = [r["plateau"] / q for r in runs]
+        steps = ", ".join(f"{b - a:+.4f}" for a, b in zip(levels, levels[1:]))
+        out.append(
+            f"**{label}, the level over t = 0.1-0.2 s** (incompressible: the wedge flattening): "
+            f"{', '.join(f'{v:.3f}' for v in levels)} ½ρ0U² at H/Δx "
+            f"{', '.join(str(r['H/dx']) for r in runs)}; changes {steps}.")
+    finest = [max((r for r in rows if r["scheme"] == label and r["c0"] == 20.0),
+                  key=lambda r: r["H/dx"]) for label in SCHEMES]
+    out.append(
+        f"At H/Δx {finest[0]['H/dx']} the two schemes' late levels differ by "
+        f"{finest[1]['plateau'] / finest[0]['plateau'] - 1:+.1%} (SPH against δ-SPH): δ-SPH's "
+        "has settled, standard SPH's still rises; why is not established here.")
+    fast = [r for r in rows if r["c0"] == 40.0]
+    for r in fast:
+        slow = next(s for s in rows if s["scheme"] == r["scheme"] and s["H/dx"] == r["H/dx"]
+                    and s["c0"] == 20.0)
+        out.append(
+            f"**c0**: at H/Δx {r['H/dx']} the late level is {r['plateau'] / q:.3f} with c0 = 40 "
+            f"against {slow['plateau'] / q:.3f} with 20 m/s ({r['plateau'] / slow['plateau'] - 1:+.1%}): "
+            "it is incompressible, as it should be.")
+    out.append(
+        "**The first-step peak is not a convergence result**: it falls at the second step "
+        "of every run (t = 2Δt, proportional to Δx/c0) and its value is the same to 13 digits at "
+        "every H/Δx: the apex's first rows of particles meet the wall in a lattice-scaled "
+        "geometry, so the whole event scales with Δx. It stays below the acoustic bound "
+        "ρ0c0U (water hammer) and scales with c0, which is all it shows.")
+    out.append(
+        "**The self-similar phase** (t = 0.02-0.06 s, U t ≤ 0.12 H) does not settle "
+        "monotonically at these resolutions; its level has an exact answer (the similarity "
+        "solution of a liquid wedge meeting a wall, Cumberbatch 1960, extended by Zhang, Yue "
+        "& Tanizawa 1996), whose tabulated apex pressure for a 90° wedge was not found in the "
+        "sources at hand, so no published value is compared.")
+    return out
 
 
 def signals_plot(runs, resolutions):

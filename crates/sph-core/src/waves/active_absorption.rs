@@ -30,7 +30,10 @@
 //! flume: the reading holds no echo of the correction that the law would feed back.
 //! The law is exact for waves at ω; other frequencies are absorbed in part (a
 //! broadband filter is not built). The correction is updated after every time step
-//! from the gauge and extrapolated over the next with its last slope.
+//! from the gauge and extrapolated over the next with its slope, followed over
+//! [`SLOPE_PERIODS`] of a period: the step-to-step slope itself, extrapolated, tripled
+//! any alternation of the reading from one step to the next, and at d/Δx = 8 that loop
+//! grew until the paddle shook at 5 g (docs/validation/wave_flume.md).
 
 use super::paddle::WaveMaker;
 use super::theory::{bound_second_harmonic, wavenumber};
@@ -38,6 +41,11 @@ use std::f64::consts::PI;
 
 /// Periods over which each of the two filters that follow a slow part averages.
 pub const MEAN_PERIODS: f64 = 3.0;
+/// Periods over which the correction's slope follows the step-to-step one (a
+/// first-order filter: at ω it lags by 17°, which moves the extrapolated velocity by
+/// 0.3 ω Δt of its amplitude; of an alternation from one step to the next it passes
+/// 1/(2π/(10 ω Δt) - 1), 5% at ω Δt = 0.03).
+pub const SLOPE_PERIODS: f64 = 0.05;
 /// Periods over which the correction is pulled back to the paddle's rest.
 pub const DRIFT_PERIODS: f64 = 10.0;
 /// The largest `k x_g` (rad) the gauge may sit at: `cos k x_g` ≥ 0.54.
@@ -68,7 +76,7 @@ struct TargetWave {
 struct Correction {
     /// The time of the last update \[s\].
     time: f64,
-    /// `X_c` \[m\], `U_c` \[m/s\] and its slope \[m/s²\] then.
+    /// `X_c` \[m\], `U_c` \[m/s\] and its followed slope \[m/s²\] then.
     x: f64,
     u: f64,
     slope: f64,
@@ -169,7 +177,7 @@ impl ActiveAbsorption {
     }
 
     /// The correction `X_c` and its two derivatives at `t` (at or after the last
-    /// update): the last velocity extrapolated with its last slope.
+    /// update): the last velocity extrapolated with the followed slope.
     pub fn correction(&self, t: f64) -> [f64; 3] {
         let c = &self.state;
         let dt = t - c.time;
@@ -222,7 +230,13 @@ impl ActiveAbsorption {
         let incident = (residual - mean[1]) / (2.0 * self.phase().cos());
         let pull = x_mean[1] / (DRIFT_PERIODS * period);
         let velocity = -self.omega / self.transfer * incident - pull;
-        let slope = if dt > 0.0 { (velocity - c.u) / dt } else { 0.0 };
+        let slope = match dt > 0.0 {
+            true => {
+                let follow = (dt / (SLOPE_PERIODS * period)).min(1.0);
+                c.slope + ((velocity - c.u) / dt - c.slope) * follow
+            }
+            false => c.slope,
+        };
         self.state = Correction {
             time: t,
             x,

@@ -16,7 +16,9 @@ use std::f64::consts::PI;
 /// section, split into incident and reflected waves), against the experiment's run
 /// 3012 (`docs/validation/data/floating_section_experiment.csv`). Measured (§4c): heave
 /// +9% here, +4% over the last 4 of 8 periods and +6.6% over 6 of 12, +0.9% at
-/// draft/Δx = 10; roll +14% here, +13% and +4%, and −18% at draft/Δx = 10 (the roll,
+/// draft/Δx = 10; roll +10% here (+14% before the flap's absorption followed its slope
+/// over T/20, docs/theory.md §14; the longer runs are from before), +13% and +4%, and
+/// −18% at draft/Δx = 10 (the roll,
 /// lightly damped near its resonance at 1.26 s, still beats with its own period over
 /// these windows). The bounds: 15% on heave, 25% on roll; the incident wave within 10%
 /// of the paddle's target (+1%). Sway, which the springs let drift at its 7.5 s
